@@ -1,0 +1,41 @@
+// Building a Model from meshes: bodies from connected components, derived geometry,
+// lumped masses, boundary-condition node arrays and contact topology.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fdem/mesh.hpp"
+#include "fdem/model.hpp"
+
+namespace fdem {
+
+/// Options shared by all bodies created from one scenario [[body]] entry.
+struct BodyOptions {
+    std::string name;      ///< scenario body name
+    int32_t material = 0;  ///< index into Model::materials (must exist)
+    bool fixed = false;    ///< all nodes held fixed
+    Vec2 velocity;         ///< initial velocity [m/s]
+};
+
+/// Append the triangles tri_ids of mesh (indices into mesh.tris) as one or more bodies: every
+/// connected component (triangles sharing an edge or a node) becomes its own body with its own
+/// nodes. Triangles are re-oriented counter-clockwise. Returns, per mesh node, the model node
+/// created for it (kNone if these triangles do not use it).
+/// Throws InputError naming mesh.file and the element for a degenerate (zero-area) triangle.
+std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector<int32_t>& tri_ids,
+                               const BodyOptions& opt);
+
+/// Compute everything derived: reference geometry, lumped masses, element viscosity,
+/// contact m_bar and topology. Call once after all bodies, materials and BCs are added.
+void finalize_model(Model& m);
+
+/// Effective 2-D Lame constants of a material (docs/theory.md eq. 2.5).
+void compute_lame(Material& mat);
+
+/// Stable central-difference time step [s] (docs/theory.md §5): min over elements of
+/// h_min / c_p and, with contact, the contact frequency bound. limiting_tri receives the element
+/// that sets the limit (kNone when the contact bound governs).
+Real stable_time_step(const Model& m, TriId* limiting_tri = nullptr);
+
+}  // namespace fdem

@@ -1,0 +1,12 @@
+// Umbrella header of the fdem library.
+#pragma once
+
+#include "fdem/build.hpp"
+#include "fdem/error.hpp"
+#include "fdem/math.hpp"
+#include "fdem/mesh.hpp"
+#include "fdem/model.hpp"
+#include "fdem/output.hpp"
+#include "fdem/scenario.hpp"
+#include "fdem/simulate.hpp"
+#include "fdem/state.hpp"

@@ -1,0 +1,44 @@
+// State: everything a time step reads and writes. Model is const during a run; State is not.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "fdem/contact_state.hpp"
+#include "fdem/math.hpp"
+
+namespace fdem {
+
+/// Energy bookkeeping per unit thickness [J/m] (docs/theory.md §4, spec §3.5).
+/// Balance: kinetic + strain + contact - work_gravity - work_external + dissipated == const.
+struct Energy {
+    Real kinetic = 0;             ///< sum 1/2 m |v^n|^2 with v^n = (v^{n-1/2} + v^{n+1/2})/2
+    Real strain = 0;              ///< sum A0 W(F)
+    Real contact = 0;             ///< stored contact potential (path-independent part)
+    Real work_gravity = 0;        ///< work done by gravity since t = 0
+    Real work_external = 0;       ///< work done by prescribed-velocity supports and kicks
+    Real dissipated_viscous = 0;  ///< material damping eta D:D and mass damping
+    Real dissipated_contact = 0;  ///< contact damping, hysteresis and friction
+    Real total() const {
+        return kinetic + strain + contact - work_gravity - work_external + dissipated_viscous +
+               dissipated_contact;
+    }
+};
+
+struct State {
+    int64_t step = 0;  ///< number of completed steps
+    Real time = 0;     ///< simulated time t^n [s]
+    Real dt = 0;       ///< time step [s]
+
+    std::vector<Vec2> x;  ///< positions x^n [m]
+    std::vector<Vec2> v;  ///< velocities v^{n-1/2} before a step, v^{n+1/2} after [m/s]
+    std::vector<Vec2> f;  ///< total nodal force of the last step [N/m]
+    std::vector<Vec2> f_contact;  ///< contact part of f [N/m]
+
+    Energy energy;
+    int32_t next_kick = 0;  ///< index of the next VelocityKick to apply
+
+    ContactState contact;  ///< pair history, candidate lists, scratch (contact_state.hpp)
+};
+
+}  // namespace fdem
