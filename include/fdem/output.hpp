@@ -1,9 +1,11 @@
 // Output: VTU frames (binary appended), PVD series for ParaView, CSV energy history.
-// Fields and units: docs/output.md.
+// Fields, units and how to open them: docs/output.md.
 #pragma once
 
 #include <cstdio>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fdem/model.hpp"
@@ -11,25 +13,65 @@
 
 namespace fdem {
 
-/// Write one VTU frame (UnstructuredGrid, binary appended raw data, written atomically:
-/// temporary file then rename). Point data: displacement, velocity, force, contact_force;
-/// cell data: stress (Cauchy, 3 comps xx,yy,xy), strain (Green-Lagrange), body, material.
-void write_vtu(const std::string& path, const Model& m, const State& s);
+/// Derived per-triangle quantities written as cell data (docs/output.md).
+struct TriFields {
+    Mat2 stress;     ///< elastic Cauchy stress sigma [Pa] (spec §3.1, without the viscous eta D)
+    Mat2 strain;     ///< Green-Lagrange strain E = 1/2 (F^T F - I) [-]
+    Real von_mises;  ///< sqrt(sxx^2 - sxx syy + syy^2 + 3 sxy^2) [Pa] (in-plane, sigma_zz = 0)
+};
 
-/// ParaView time series: collects (time, file) and rewrites the .pvd after each frame.
+/// Stress, strain and von Mises stress of triangle t in state s.
+TriFields tri_fields(const Model& m, const State& s, TriId t);
+
+/// An extra named array for write_vtu (e.g. the contact distance field). Values are tuple-major:
+/// values[i * components + c]; the tuple count must be num_nodes() (point data) or num_tris()
+/// (cell data). A 2-component array (an in-plane vector) is written as 3 components with z = 0
+/// so ParaView's glyph filter accepts it. The span must stay valid during the call only.
+struct ExtraField {
+    std::string name;    ///< array name in ParaView (must not clash with a built-in one)
+    int components = 1;  ///< 1 (scalar), 2 (in-plane vector, padded to 3), 3, 9, ...
+    std::span<const Real> values;
+};
+
+/// Write one VTU frame: VTK XML UnstructuredGrid, raw binary appended data (UInt64 headers,
+/// little endian), written atomically (temporary file then rename).
+///   points: current positions x (z = 0); cells: triangles (VTK type 5).
+///   point data: displacement x - X [m], velocity [m/s], force [N/m], contact_force [N/m],
+///               body (int32), then extra_point.
+///   cell data:  stress (9-component Cauchy tensor [Pa]), strain (9-component Green-Lagrange),
+///               von_mises [Pa], body, material (int32), then extra_cell.
+///   field data: TIME and TimeValue (= s.time [s]), CYCLE (= s.step).
+/// Throws SimulationError (naming the file and the system error) if the file cannot be written,
+/// and std::invalid_argument if an extra field has the wrong size.
+void write_vtu(const std::string& path, const Model& m, const State& s,
+               std::span<const ExtraField> extra_point = {},
+               std::span<const ExtraField> extra_cell = {});
+
+/// ParaView time series: collects (time, file) and rewrites the .pvd atomically after each
+/// frame, so a killed run still leaves a valid series of the frames written so far.
 class PvdSeries {
 public:
+    /// path: the .pvd file; frame files are given relative to its directory.
     explicit PvdSeries(std::string path) : path_(std::move(path)) {}
+    /// Append frame (time [s], file name relative to the .pvd) and rewrite the .pvd.
     void add(Real time, const std::string& relative_file);
+    const std::vector<std::pair<Real, std::string>>& frames() const { return frames_; }
 
 private:
     std::string path_;
     std::vector<std::pair<Real, std::string>> frames_;
 };
 
-/// CSV history of energies and counters, one row per output interval.
+/// CSV history of energies and counters, one row per call, flushed after each row.
+/// Columns (energies in J/m, per unit thickness):
+///   step,time,kinetic,strain,contact,work_gravity,work_external,dissipated_viscous,
+///   dissipated_contact,total,energy_error,active_contacts
+/// total = Energy::total(); energy_error = total - total of the first row written (absolute,
+/// J/m; 0 on the first row). Values use %.17g, so they read back bit-exact.
+/// write() reads s.energy as it is: call update_energy() first.
 class HistoryWriter {
 public:
+    /// Creates (truncates) path and writes the header. Throws SimulationError if it cannot.
     explicit HistoryWriter(const std::string& path);
     ~HistoryWriter();
     HistoryWriter(const HistoryWriter&) = delete;
@@ -37,7 +79,10 @@ public:
     void write(const Model& m, const State& s);
 
 private:
+    std::string path_;
     std::FILE* file_ = nullptr;
+    bool has_reference_ = false;
+    Real total0_ = 0;  ///< total energy of the first row [J/m]
 };
 
 }  // namespace fdem

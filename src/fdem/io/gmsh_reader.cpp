@@ -1,0 +1,370 @@
+// Mesh input through the Gmsh C++ API: .msh (2.2 / 4.1, ASCII or binary) and .geo (meshed here).
+// Gmsh keeps global state and is not thread-safe: every read holds one process-wide mutex and
+// runs a complete initialize() ... finalize() cycle, so no Gmsh state leaks from one read to the
+// next (options such as Mesh.MeshSizeMax included).
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <regex>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "fdem/error.hpp"
+#include "fdem/mesh.hpp"
+
+namespace fdem {
+
+namespace {
+
+// Gmsh element types fdem understands (Gmsh reference manual, "MSH file format").
+constexpr int kLine2 = 1;
+constexpr int kTriangle3 = 2;
+constexpr int kPoint1 = 15;
+
+std::mutex& gmsh_mutex() {
+    static std::mutex m;
+    return m;
+}
+
+/// Line `line` (1-based) of a text file, without the newline; "" if unavailable.
+std::string file_line(const std::string& path, int line) {
+    if (line <= 0) {
+        return {};
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::string s;
+    for (int i = 1; i <= line && std::getline(in, s); ++i) {
+        if (i == line) {
+            if (!s.empty() && s.back() == '\r') {
+                s.pop_back();
+            }
+            // binary sections are not worth echoing
+            const bool printable = std::all_of(s.begin(), s.end(), [](unsigned char c) {
+                return c == '\t' || (c >= 32 && c < 127);
+            });
+            return printable && s.size() < 200 ? s : std::string{};
+        }
+    }
+    return {};
+}
+
+/// 1-based line of the first line equal to `header` (e.g. "$Elements"); 0 if absent.
+/// Section headers are text even in binary .msh files.
+int section_line(const std::string& path, const std::string& header) {
+    std::ifstream in(path, std::ios::binary);
+    std::string s;
+    for (int i = 1; std::getline(in, s); ++i) {
+        if (!s.empty() && s.back() == '\r') {
+            s.pop_back();
+        }
+        if (s == header) {
+            return i;
+        }
+    }
+    return 0;
+}
+
+bool is_msh(const std::string& path) {
+    return std::filesystem::path(path).extension() == ".msh";
+}
+
+/// An InputError located at a .msh section header (Gmsh's own messages carry no line).
+[[noreturn]] void fail_at_section(const std::string& path, const std::string& header,
+                                  const std::string& msg) {
+    const int line = is_msh(path) ? section_line(path, header) : 0;
+    throw InputError({path, line, 0}, "", msg, file_line(path, line));
+}
+
+/// Turn a Gmsh error text into an InputError naming the file and, when Gmsh says it, the line.
+/// Gmsh reports .geo errors as "'file.geo', line 7: syntax error (;)".
+[[noreturn]] void fail_from_gmsh(const std::string& path, std::string text) {
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) {
+        text.pop_back();
+    }
+    if (text.rfind("Error: ", 0) == 0) {
+        text = text.substr(7);
+    }
+    static const std::regex with_line(R"('([^']*)', line (\d+)\s*:\s*(.*))");
+    std::smatch m;
+    if (std::regex_match(text, m, with_line)) {
+        const int line = std::stoi(m[2].str());
+        throw InputError({path, line, 0}, "",
+                         fmt::format("cannot read mesh file '{}': {}", path, m[3].str()),
+                         file_line(path, line));
+    }
+
+    // .msh reader messages name the section ("Could not read nodes"): point at its header
+    std::string lower = text;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string msg = fmt::format("cannot read mesh file '{}': {}", path, text);
+    if (lower.find("element") != std::string::npos) {
+        fail_at_section(path, "$Elements", msg);
+    }
+    if (lower.find("node") != std::string::npos) {
+        fail_at_section(path, "$Nodes", msg);
+    }
+    if (lower.find("entit") != std::string::npos) {
+        fail_at_section(path, "$Entities", msg);
+    }
+    if (lower.find("format") != std::string::npos || lower.find("version") != std::string::npos) {
+        fail_at_section(path, "$MeshFormat", msg);
+    }
+    throw InputError({path, 0, 0}, "", msg);
+}
+
+std::string element_name(int type) {
+    std::string name;
+    int dim = 0, order = 0, num_nodes = 0, num_primary = 0;
+    std::vector<double> local;
+    gmsh::model::mesh::getElementProperties(type, name, dim, order, num_nodes, local, num_primary);
+    return name;
+}
+
+/// Scoped Gmsh session: initialize quietly, collect log messages, always finalize.
+class GmshSession {
+public:
+    GmshSession() {
+        // "-v 2": errors and warnings reach the logger, nothing reaches the terminal
+        const char* args[] = {"fdem", "-v", "2"};
+        gmsh::initialize(3, const_cast<char**>(args), /*readConfigFiles=*/false);
+        gmsh::option::setNumber("General.Terminal", 0);
+        gmsh::option::setNumber("General.NumThreads", 1);  // deterministic meshing
+        gmsh::logger::start();
+    }
+    ~GmshSession() {
+        try {
+            gmsh::logger::stop();
+            gmsh::finalize();
+        } catch (...) {
+            // finalize failing leaves nothing for us to clean up
+        }
+    }
+    GmshSession(const GmshSession&) = delete;
+    GmshSession& operator=(const GmshSession&) = delete;
+
+    /// First logged error since start, "" if none (Gmsh logs some errors without throwing).
+    static std::string first_error() {
+        std::vector<std::string> log;
+        gmsh::logger::get(log);
+        for (const std::string& s : log) {
+            if (s.rfind("Error", 0) == 0) {
+                return s;
+            }
+        }
+        return {};
+    }
+};
+
+/// Read the current Gmsh model into mesh (called inside a session).
+void extract(MeshData& mesh) {
+    const std::string& path = mesh.file;
+
+    // nodes: Gmsh tags are arbitrary positive integers -> dense 0-based ids
+    std::vector<std::size_t> node_tags;
+    std::vector<double> coord, param;
+    gmsh::model::mesh::getNodes(node_tags, coord, param, -1, -1, false, false);
+    std::unordered_map<std::size_t, int32_t> node_id;
+    node_id.reserve(node_tags.size());
+    mesh.nodes.resize(node_tags.size());
+    for (std::size_t i = 0; i < node_tags.size(); ++i) {
+        const double z = coord[3 * i + 2];
+        if (z != 0.0) {
+            fail_at_section(path, "$Nodes",
+                            fmt::format("mesh file '{}': node {} has z = {:g}; fdem is 2-D and "
+                                        "needs every node in the plane z = 0",
+                                        path, node_tags[i], z));
+        }
+        mesh.nodes[i] = {coord[3 * i], coord[3 * i + 1]};
+        node_id[node_tags[i]] = static_cast<int32_t>(i);
+    }
+    auto to_id = [&](std::size_t tag, std::size_t elem_tag) {
+        const auto it = node_id.find(tag);
+        if (it == node_id.end()) {
+            fail_at_section(path, "$Elements",
+                            fmt::format("mesh file '{}': element {} references node {}, which "
+                                        "$Nodes does not define",
+                                        path, elem_tag, tag));
+        }
+        return it->second;
+    };
+
+    // elements, entity by entity, so physical groups (sets of entities) map to element ranges
+    std::map<std::pair<int, int>, std::vector<int32_t>> entity_elems;
+    gmsh::vectorpair entities;
+    gmsh::model::getEntities(entities);
+    for (const auto& [dim, tag] : entities) {
+        std::vector<int> types;
+        std::vector<std::vector<std::size_t>> elem_tags, elem_nodes;
+        gmsh::model::mesh::getElements(types, elem_tags, elem_nodes, dim, tag);
+        std::vector<int32_t>& mine = entity_elems[{dim, tag}];
+        for (std::size_t k = 0; k < types.size(); ++k) {
+            const int type = types[k];
+            const auto& et = elem_tags[k];
+            const auto& en = elem_nodes[k];
+            if (et.empty()) {
+                continue;
+            }
+            if (type == kTriangle3) {
+                for (std::size_t e = 0; e < et.size(); ++e) {
+                    mine.push_back(static_cast<int32_t>(mesh.tris.size()));
+                    mesh.tris.push_back({to_id(en[3 * e], et[e]), to_id(en[3 * e + 1], et[e]),
+                                         to_id(en[3 * e + 2], et[e])});
+                }
+            } else if (type == kLine2) {
+                for (std::size_t e = 0; e < et.size(); ++e) {
+                    mine.push_back(static_cast<int32_t>(mesh.lines.size()));
+                    mesh.lines.push_back({to_id(en[2 * e], et[e]), to_id(en[2 * e + 1], et[e])});
+                }
+            } else if (type == kPoint1) {
+                for (std::size_t e = 0; e < et.size(); ++e) {
+                    mine.push_back(static_cast<int32_t>(mesh.points.size()));
+                    mesh.points.push_back(to_id(en[e], et[e]));
+                }
+            } else {
+                // never ignore an element silently: it would be a hole in a body
+                const std::string name = element_name(type);
+                std::string hint = "use first-order triangles (gmsh -order 1";
+                if (name.find("Quadrilateral") != std::string::npos) {
+                    hint += "; for .geo files remove Recombine";
+                }
+                hint += ")";
+                fail_at_section(path, "$Elements",
+                                fmt::format("mesh file '{}': element {} has type {} ({}), which "
+                                            "is not supported; {}",
+                                            path, et[0], type, name, hint));
+            }
+        }
+    }
+    mesh.tri_tag.assign(mesh.tris.size(), 0);
+    mesh.line_tag.assign(mesh.lines.size(), 0);
+    mesh.point_tag.assign(mesh.points.size(), 0);
+
+    // physical groups
+    gmsh::vectorpair groups;
+    gmsh::model::getPhysicalGroups(groups);
+    std::sort(groups.begin(), groups.end());
+    for (const auto& [dim, tag] : groups) {
+        if (dim > 2) {
+            continue;  // 3-D groups cannot contain supported elements (rejected above)
+        }
+        PhysicalGroup g;
+        g.dim = dim;
+        g.tag = tag;
+        gmsh::model::getPhysicalName(dim, tag, g.name);
+        std::vector<int> ents;
+        gmsh::model::getEntitiesForPhysicalGroup(dim, tag, ents);
+        for (const int e : ents) {
+            const auto it = entity_elems.find({dim, e});
+            if (it != entity_elems.end()) {
+                g.elements.insert(g.elements.end(), it->second.begin(), it->second.end());
+            }
+        }
+        std::sort(g.elements.begin(), g.elements.end());
+        g.elements.erase(std::unique(g.elements.begin(), g.elements.end()), g.elements.end());
+
+        // first physical tag of each element, kept for simple per-element tagging
+        std::vector<int32_t>& first = dim == 2   ? mesh.tri_tag
+                                      : dim == 1 ? mesh.line_tag
+                                                 : mesh.point_tag;
+        for (const int32_t e : g.elements) {
+            if (first[e] == 0) {
+                first[e] = tag;
+            }
+        }
+        if (!g.name.empty()) {
+            mesh.physical[g.name] = {dim, tag};
+        }
+        mesh.groups.push_back(std::move(g));
+    }
+
+    if (mesh.tris.empty()) {
+        throw InputError({path, 0, 0}, "",
+                         fmt::format("mesh file '{}' contains no triangles (Gmsh element type 2); "
+                                     "a body needs a meshed 2-D surface{}",
+                                     path,
+                                     std::filesystem::path(path).extension() == ".geo"
+                                         ? " (define a Plane Surface in the .geo file)"
+                                         : ""));
+    }
+}
+
+}  // namespace
+
+MeshData read_mesh(const std::string& path, Real mesh_size) {
+    MeshData mesh;
+    mesh.file = path;
+
+    // Gmsh reports a missing file only in its log, so check first
+    const std::filesystem::path p(path);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) {
+        const bool exists = std::filesystem::exists(p, ec);
+        throw InputError({path, 0, 0}, "",
+                         fmt::format("cannot open mesh file '{}': {}", path,
+                                     exists ? "not a regular file" : "No such file"));
+    }
+    {
+        std::ifstream probe(path, std::ios::binary);
+        if (!probe) {
+            throw InputError(
+                {path, 0, 0}, "",
+                fmt::format("cannot open mesh file '{}': {}", path, std::strerror(errno)));
+        }
+    }
+    const std::string ext = p.extension().string();
+    if (ext != ".msh" && ext != ".geo") {
+        throw InputError({path, 0, 0}, "",
+                         fmt::format("mesh file '{}' has extension '{}'; expected .msh (Gmsh mesh) "
+                                     "or .geo (Gmsh geometry)",
+                                     path, ext));
+    }
+    if (!std::isfinite(mesh_size) || mesh_size < 0) {
+        throw InputError({path, 0, 0}, "mesh_size",
+                         fmt::format("mesh size for '{}' must be >= 0 (0 keeps the file's own "
+                                     "sizes), got {:g}",
+                                     path, mesh_size));
+    }
+
+    const std::lock_guard<std::mutex> lock(gmsh_mutex());
+    GmshSession session;
+    try {
+        gmsh::open(path);
+        if (std::string err = GmshSession::first_error(); !err.empty()) {
+            fail_from_gmsh(path, err);
+        }
+        if (ext == ".geo") {
+            if (mesh_size > 0) {
+                gmsh::option::setNumber("Mesh.MeshSizeMax", mesh_size);
+            }
+            gmsh::model::mesh::generate(2);
+            if (std::string err = GmshSession::first_error(); !err.empty()) {
+                fail_from_gmsh(path, err);
+            }
+        }
+        extract(mesh);
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::string& err) {
+        // Gmsh 4.8 throws its last error message as a std::string
+        fail_from_gmsh(path, err);
+    } catch (const std::exception& e) {
+        fail_from_gmsh(path, e.what());
+    } catch (...) {
+        std::string err;
+        gmsh::logger::getLastError(err);
+        fail_from_gmsh(path, err.empty() ? "unknown Gmsh error" : err);
+    }
+    return mesh;
+}
+
+}  // namespace fdem
