@@ -13,10 +13,6 @@ State make_state(const Model& m, Real dt);
 ///   forces f^n(x^n, v^{n-1/2}) -> v^{n+1/2} -> x^{n+1}; updates the energy accumulators.
 void step(const Model& m, State& s);
 
-/// Kinetic, strain and contact energy of the current state (the accumulated works are kept in
-/// s.energy and updated by step()). Writes s.energy.kinetic/strain.
-void update_energy(const Model& m, State& s);
-
 /// Stop on NaN/Inf, inverted triangles or runaway velocity: throws SimulationError naming
 /// step, time, entity and a remedy.
 void check_state(const Model& m, const State& s);

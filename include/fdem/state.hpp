@@ -12,6 +12,7 @@ namespace fdem {
 /// Energy bookkeeping per unit thickness [J/m] (docs/theory.md §4, spec §3.5).
 /// Balance: kinetic + strain + contact - work_gravity - work_external + dissipated == const.
 struct Energy {
+    Real time = 0;                ///< t^n at which the energies below were evaluated [s]
     Real kinetic = 0;             ///< sum 1/2 m |v^n|^2 with v^n = (v^{n-1/2} + v^{n+1/2})/2
     Real strain = 0;              ///< sum A0 W(F)
     Real contact = 0;             ///< stored contact potential (path-independent part)
@@ -36,6 +37,7 @@ struct State {
     std::vector<Vec2> f_contact;  ///< contact part of f [N/m]
 
     Energy energy;
+    std::vector<Vec2> scratch_bc_v;  ///< v^{n-1/2} of supported nodes (step() scratch)
     int32_t next_kick = 0;  ///< index of the next VelocityKick to apply
 
     ContactState contact;  ///< pair history, candidate lists, scratch (contact_state.hpp)

@@ -1,0 +1,197 @@
+// fdem command-line program: run or check a scenario.
+//   fdem run SCENARIO [--out DIR] [--end-time T] [--threads N] [--quiet]
+//   fdem check SCENARIO
+// Exit codes: 0 success, 1 simulation failure, 2 usage or input error.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <omp.h>
+
+#include "fdem/fdem.hpp"
+
+namespace {
+
+constexpr int kExitSimulation = 1;
+constexpr int kExitInput = 2;
+
+struct RunOptions {
+    std::string scenario;
+    std::string out;
+    double end_time = -1;
+    int threads = 0;
+    bool quiet = false;
+};
+
+// Rough resident size of the model and state [bytes], for `fdem check`.
+size_t memory_estimate(const fdem::Model& m) {
+    const size_t nn = static_cast<size_t>(m.num_nodes()), nt = static_cast<size_t>(m.num_tris());
+    const size_t model = nn * (2 * sizeof(fdem::Vec2) + 2 * sizeof(double) + sizeof(int32_t)) +
+                         nt * (3 * sizeof(int32_t) + 2 * sizeof(int32_t) + sizeof(fdem::Mat2) +
+                               2 * sizeof(double));
+    const size_t state = nn * 4 * sizeof(fdem::Vec2);
+    return model + state;
+}
+
+void print_summary(const fdem::Scenario& sc) {
+    const fdem::Model& m = sc.model;
+    size_t fixed = 0;
+    for (const auto& b : m.bodies) fixed += b.fixed ? 1 : 0;
+    fmt::print("scenario   {}\n", sc.path);
+    fmt::print("bodies     {} ({} fixed) from {} body entries\n", m.num_bodies(), fixed,
+               m.group_names.size());
+    fmt::print("nodes      {}\ntriangles  {}\nmaterials  {}\n", m.num_nodes(), m.num_tris(),
+               m.materials.size());
+    if (sc.run.limiting_tri != fdem::kNone) {
+        fmt::print("stable dt  {:.4g} s (limited by triangle {}, material \"{}\")\n", sc.run.stable_dt,
+                   sc.run.limiting_tri,
+                   m.materials[m.tri_material[sc.run.limiting_tri]].name);
+    } else {
+        fmt::print("stable dt  {:.4g} s (limited by the contact penalty)\n", sc.run.stable_dt);
+    }
+    fmt::print("dt         {:.4g} s{}\n", sc.run.dt,
+               sc.run.dt_auto ? fmt::format(" (auto: {} x stable)", sc.run.dt_fraction) : "");
+    fmt::print("end time   {:.6g} s ({} steps)\n", sc.run.end_time,
+               static_cast<long long>(std::ceil(sc.run.end_time / sc.run.dt - 1e-9)));
+    fmt::print("memory     {:.2f} MB (model + state, estimate)\n", memory_estimate(m) / 1e6);
+}
+
+int run(const RunOptions& opt) {
+    using clock = std::chrono::steady_clock;
+    fdem::Scenario sc = fdem::load_scenario(opt.scenario);
+    if (opt.end_time > 0) sc.run.end_time = opt.end_time;
+    if (!opt.out.empty()) sc.run.output.dir = opt.out;
+    if (opt.threads > 0) omp_set_num_threads(opt.threads);
+    const fdem::Model& m = sc.model;
+    const bool tty = isatty(STDERR_FILENO) && !opt.quiet;
+    if (!opt.quiet) print_summary(sc);
+
+    namespace fs = std::filesystem;
+    const fs::path out = sc.run.output.dir;
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec) {
+        throw fdem::InputError({sc.path, 0, 0}, "output.dir",
+                               fmt::format("cannot create output folder '{}': {}", out.string(),
+                                           ec.message()));
+    }
+
+    fdem::State s = fdem::make_state(m, sc.run.dt);
+    fdem::HistoryWriter history((out / "history.csv").string());
+    fdem::PvdSeries series((out / "series.pvd").string());
+    const double interval =
+        sc.run.output.interval > 0 ? sc.run.output.interval : sc.run.end_time / 100.0;
+    int frame = 0;
+    double next_output = 0;
+    auto write_output = [&]() {
+        history.write(m, s);
+        if (sc.run.output.vtu) {
+            const std::string name = fmt::format("frame_{:06d}.vtu", frame);
+            fdem::write_vtu((out / name).string(), m, s);
+            series.add(s.time, name);
+        }
+        ++frame;
+        next_output += interval;
+    };
+
+    const auto t0 = clock::now();
+    auto last_progress = t0;
+    const int64_t total_steps = static_cast<int64_t>(std::ceil(sc.run.end_time / s.dt - 1e-9));
+    double e0 = 0, max_err = 0, scale = 0;
+    fdem::State last_good;
+    try {
+        while (s.step < total_steps) {
+            fdem::step(m, s);
+            if (s.step == 1) e0 = s.energy.total();
+            const auto& e = s.energy;
+            scale = std::max({scale, e.kinetic + e.strain + e.contact, std::abs(e.work_gravity),
+                              std::abs(e.work_external)});
+            max_err = std::max(max_err, std::abs(e.total() - e0));
+            if (s.step % 16 == 0 || s.step == total_steps) fdem::check_state(m, s);
+            if (s.time >= next_output - 0.5 * s.dt || s.step == total_steps) write_output();
+            if (tty) {
+                const auto now = clock::now();
+                if (now - last_progress > std::chrono::milliseconds(500)) {
+                    last_progress = now;
+                    const double wall = std::chrono::duration<double>(now - t0).count();
+                    const double sps = static_cast<double>(s.step) / wall;
+                    fmt::print(stderr, "\rstep {:>9} / {}  t = {:.4e} s  {:.3g} steps/s  ETA {:.0f} s   ",
+                               s.step, total_steps, s.time, sps,
+                               static_cast<double>(total_steps - s.step) / sps);
+                }
+            }
+        }
+    } catch (const fdem::SimulationError& err) {
+        if (tty) fmt::print(stderr, "\n");
+        fmt::print(stderr, "error: {}\n", err.what());
+        fdem::write_vtu((out / "failure.vtu").string(), m, s);
+        fmt::print(stderr, "the state at failure is in {}\n", (out / "failure.vtu").string());
+        return kExitSimulation;
+    }
+    if (tty) fmt::print(stderr, "\n");
+    const double wall = std::chrono::duration<double>(clock::now() - t0).count();
+    if (!opt.quiet) {
+        fmt::print("done       {} steps in {:.2f} s ({:.3g} steps/s, {:.3g} element-steps/s)\n",
+                   s.step, wall, static_cast<double>(s.step) / wall,
+                   static_cast<double>(s.step) * m.num_tris() / wall);
+        fmt::print("energy     kinetic {:.6g}, strain {:.6g}, contact {:.6g}, dissipated {:.6g} J/m\n",
+                   s.energy.kinetic, s.energy.strain, s.energy.contact,
+                   s.energy.dissipated_viscous + s.energy.dissipated_contact);
+        fmt::print("balance    max |E_total - E_0| = {:.3g} J/m = {:.3g} % of the energy scale "
+                   "{:.6g} J/m\n",
+                   max_err, scale > 0 ? 100.0 * max_err / scale : 0.0, scale);
+        fmt::print("output     {} ({} frames; open series.pvd in ParaView)\n", out.string(), frame);
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"fdem: 2-D combined finite-discrete element simulator with smooth contact"};
+    app.set_version_flag("--version", std::string("fdem ") + FDEM_VERSION);
+    app.require_subcommand(1);
+
+    RunOptions ro;
+    auto* run_cmd = app.add_subcommand("run", "run a scenario");
+    run_cmd->add_option("scenario", ro.scenario, "scenario file (TOML)")->required();
+    run_cmd->add_option("--out", ro.out, "output folder (default: [output] dir of the scenario)");
+    run_cmd->add_option("--end-time", ro.end_time, "override the end time [s]")
+        ->check(CLI::PositiveNumber);
+    run_cmd->add_option("--threads", ro.threads, "OpenMP threads (default: all cores)")
+        ->check(CLI::Range(1, 1024));
+    run_cmd->add_flag("--quiet", ro.quiet, "no summary and no progress line");
+
+    std::string check_path;
+    auto* check_cmd = app.add_subcommand("check", "validate a scenario and print a model summary");
+    check_cmd->add_option("scenario", check_path, "scenario file (TOML)")->required();
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? 0 : kExitInput;
+    }
+
+    try {
+        if (*run_cmd) return run(ro);
+        if (*check_cmd) {
+            print_summary(fdem::load_scenario(check_path));
+            return 0;
+        }
+    } catch (const fdem::InputError& e) {
+        fmt::print(stderr, "{}\n", e.what());
+        return kExitInput;
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "error: {}\n", e.what());
+        return kExitSimulation;
+    }
+    return 0;
+}

@@ -1,0 +1,34 @@
+// Constant-strain triangle with finite strain (docs/theory.md §3, spec §3.1).
+#pragma once
+
+#include <limits>
+
+#include "fdem/model.hpp"
+#include "fdem/state.hpp"
+
+namespace fdem {
+
+/// Result of one internal-force pass, reduced over all triangles.
+struct ElementPass {
+    Real strain_energy = 0;    ///< sum A0 W(F) at the current positions [J/m]
+    Real viscous_power = 0;    ///< sum A eta D:D [W/m], >= 0
+    Real min_jacobian = std::numeric_limits<Real>::infinity();  ///< smallest det F seen
+    TriId min_jacobian_tri = kNone;
+};
+
+/// Add internal forces f_i = 1/2 sigma n_i (theory eq. 3.3) of triangles [begin, end) to f.
+/// sigma includes the viscous part eta D (theory eq. 2.4) from velocities v. Triangles of
+/// fixed bodies are skipped (they never move).
+ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Vec2* f,
+                                TriId begin, TriId end);
+
+/// Deformation gradient F = Ds Dm^-1 of triangle t (theory eq. 3.1).
+inline Mat2 deformation_gradient(const Model& m, const Vec2* x, TriId t) {
+    const auto& n = m.tri_nodes[t];
+    return columns(x[n[1]] - x[n[0]], x[n[2]] - x[n[0]]) * m.tri_dm_inv[t];
+}
+
+/// Critical time step of one triangle: smallest altitude / P-wave speed (theory eq. 5.3).
+Real element_critical_dt(const Model& m, TriId t);
+
+}  // namespace fdem

@@ -1,0 +1,181 @@
+// The explicit time step (docs/architecture.md, docs/theory.md §5):
+//   1. kicks due at t^n overwrite velocities
+//   2. clear forces
+//   3. internal forces of the triangles (elastic + viscous)          element/cst.cpp
+//   4. contact forces (broad phase when the skin is exceeded, law)    contact/
+//   5. gravity and mass-proportional damping
+//   6. central difference: v^{n+1/2} = v^{n-1/2} + dt f/m; prescribed components overwrite v
+//   7. energy accounting at t^n; x^{n+1} = x^n + dt v^{n+1/2}
+//   8. failure checks (inverted element from step 3, NaN)
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "contact/contact.hpp"
+#include "element/cst.hpp"
+#include "fdem/error.hpp"
+#include "fdem/simulate.hpp"
+
+namespace fdem {
+
+State make_state(const Model& m, Real dt) {
+    State s;
+    s.dt = dt;
+    s.x = m.node_x0;
+    s.v = m.node_v0;
+    // fixed bodies never move, whatever velocity their entry was given
+    for (NodeId i = 0; i < m.num_nodes(); ++i) {
+        if (m.bodies[m.node_body[i]].fixed) s.v[i] = {};
+    }
+    s.f.assign(m.node_x0.size(), Vec2{});
+    s.f_contact.assign(m.node_x0.size(), Vec2{});
+    size_t n_bc = 0;
+    for (const BoundaryCondition& bc : m.bcs) n_bc += bc.nodes.size();
+    s.scratch_bc_v.assign(n_bc, Vec2{});
+    init_contact_state(m, s);
+    return s;
+}
+
+namespace {
+
+// Apply the velocity kicks whose time has come (theory §5.2). Their energy input is counted as
+// external work, so the balance still closes.
+void apply_kicks(const Model& m, State& s) {
+    while (s.next_kick < static_cast<int32_t>(m.kicks.size()) &&
+           m.kicks[static_cast<size_t>(s.next_kick)].time <= s.time + 0.5 * s.dt) {
+        const VelocityKick& k = m.kicks[static_cast<size_t>(s.next_kick)];
+        for (const Body& b : m.bodies) {
+            if (b.group != k.group || b.fixed) continue;
+            for (NodeId i = b.node_begin; i < b.node_end; ++i) {
+                const Vec2 old = s.v[i];
+                if (k.has_x) s.v[i].x = k.velocity.x;
+                if (k.has_y) s.v[i].y = k.velocity.y;
+                s.energy.work_external += 0.5 * m.node_mass[i] * (norm2(s.v[i]) - norm2(old));
+            }
+        }
+        ++s.next_kick;
+    }
+}
+
+}  // namespace
+
+void step(const Model& m, State& s) {
+    const NodeId nn = m.num_nodes();
+    const Real dt = s.dt;
+    Vec2* x = s.x.data();
+    Vec2* v = s.v.data();
+    Vec2* f = s.f.data();
+
+    // 1. kicks
+    apply_kicks(m, s);
+
+    // 2. clear forces
+    for (NodeId i = 0; i < nn; ++i) {
+        f[i] = {};
+        s.f_contact[i] = {};
+    }
+
+    // 3. internal forces
+    const ElementPass pass = add_internal_forces(m, x, v, f, 0, m.num_tris());
+    if (pass.min_jacobian_tri != kNone && !(pass.min_jacobian > 0)) {
+        const TriId t = pass.min_jacobian_tri;
+        throw SimulationError(
+            s.step, s.time, fmt::format("triangle {} (body {})", t, m.tri_body[t]),
+            fmt::format("element inverted (det F = {:.3g}); reduce dt (now {:.3g} s) or increase "
+                        "the contact penalty",
+                        pass.min_jacobian, dt));
+    }
+
+    // 4. contact forces (writes s.f, s.f_contact, s.energy.contact, dissipated_contact)
+    add_contact_forces(m, s);
+
+    // remember v^{n-1/2} of supported nodes (preallocated scratch): their reaction needs it
+    {
+        size_t k = 0;
+        for (const BoundaryCondition& bc : m.bcs) {
+            for (NodeId i : bc.nodes) s.scratch_bc_v[k++] = v[i];
+        }
+    }
+
+    // 5. gravity and mass damping; 6. velocity update; 7. energies at t^n
+    const bool mass_damped = s.time < m.mass_damping.until && m.mass_damping.coefficient > 0;
+    const Real c = m.mass_damping.coefficient;
+    const Vec2 g = m.gravity;
+    Real kinetic2 = 0, gravity_work = 0, damping_power = 0;
+    // the first step starts from v^0 and advances half a step to v^{1/2} (theory eq. 5.1), so a
+    // constant acceleration is integrated exactly: x^n = x^0 + v^0 t + a t^2 / 2
+    const bool first = s.step == 0;
+    const Real dt_v = first ? 0.5 * dt : dt;
+    for (NodeId i = 0; i < nn; ++i) {
+        const Real inv = m.node_inv_mass[i];
+        if (inv == 0) continue;  // nodes of fixed bodies
+        const Real mi = m.node_mass[i];
+        const Vec2 v_old = v[i];
+        Vec2 fi = f[i] + mi * g;
+        if (mass_damped) fi -= (c * mi) * v_old;
+        const Vec2 v_new = v_old + (dt_v * inv) * fi;
+        const Vec2 vn = first ? v_old : 0.5 * (v_old + v_new);  // v^n (theory eq. 5.2)
+        kinetic2 += mi * norm2(vn);
+        // work of gravity up to x^n: the exact potential change (theory eq. 4.2)
+        gravity_work += mi * dot(g, x[i] - m.node_x0[i]);
+        if (mass_damped) damping_power += c * mi * dot(v_old, vn);
+        v[i] = v_new;
+    }
+
+    // prescribed velocity components overwrite v^{n+1/2}; the support reaction
+    // R = m (v_new - v_free)/dt does the work R . v^n dt (theory eq. 4.3)
+    Real support_work = 0;
+    {
+        size_t k = 0;
+        const Real tm = s.time + 0.5 * dt;
+        for (const BoundaryCondition& bc : m.bcs) {
+            const bool active = tm >= bc.start && tm < bc.end;
+            for (NodeId i : bc.nodes) {
+                const Vec2 v_old = s.scratch_bc_v[k++];
+                if (!active || m.node_inv_mass[i] == 0) continue;
+                const Real mi = m.node_mass[i];
+                const Vec2 v_free = v[i];
+                Vec2 v_new = v_free;
+                if (bc.has_x) v_new.x = bc.velocity.x;
+                if (bc.has_y) v_new.y = bc.velocity.y;
+                const Vec2 reaction = (mi / dt_v) * (v_new - v_free);
+                const Vec2 vn_free = first ? v_old : 0.5 * (v_old + v_free);
+                const Vec2 vn = first ? v_old : 0.5 * (v_old + v_new);
+                support_work += dot(reaction, vn) * dt_v;
+                kinetic2 += mi * (norm2(vn) - norm2(vn_free));
+                v[i] = v_new;
+            }
+        }
+    }
+
+    // x^{n+1} = x^n + dt v^{n+1/2}
+    for (NodeId i = 0; i < nn; ++i) {
+        if (m.node_inv_mass[i] == 0) continue;
+        x[i] += dt * v[i];
+    }
+
+    s.energy.kinetic = 0.5 * kinetic2;
+    s.energy.time = s.time;
+    s.energy.strain = pass.strain_energy;
+    s.energy.work_gravity = gravity_work;
+    s.energy.work_external += support_work;
+    s.energy.dissipated_viscous += (pass.viscous_power + damping_power) * dt_v;
+
+    s.time += dt;
+    ++s.step;
+}
+
+void check_state(const Model& m, const State& s) {
+    for (NodeId i = 0; i < m.num_nodes(); ++i) {
+        if (!std::isfinite(s.x[i].x) || !std::isfinite(s.x[i].y) || !std::isfinite(s.v[i].x) ||
+            !std::isfinite(s.v[i].y)) {
+            throw SimulationError(
+                s.step, s.time, fmt::format("node {} (body {})", i, m.node_body[i]),
+                fmt::format("position or velocity is not finite; the run is unstable: reduce dt "
+                            "(now {:.3g} s) or check penalties and damping",
+                            s.dt));
+        }
+    }
+}
+
+}  // namespace fdem

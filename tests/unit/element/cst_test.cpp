@@ -1,0 +1,147 @@
+// CST element kernel: patch test, objectivity, consistency with the strain energy, small strain.
+// (issue "engine foundation", spec T12, docs/theory.md §2-3)
+#include "element/cst.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "material/hyperelastic.hpp"
+#include "support/scenes.hpp"
+
+namespace fdem {
+namespace {
+
+// 4 x 4 square of side 1 with interior nodes perturbed by up to 20 % of the cell size, so the
+// patch test is not passed by symmetry alone.
+Model perturbed_patch(Real nu, PlaneMode plane) {
+    Model m;
+    Material mat = scenes::paper_material("p", 1e9, nu);
+    mat.plane = plane;
+    m.materials.push_back(mat);
+    scenes::add_rectangle(m, 0, 0, 1, 1, 4, 4, 0);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<Real> u(-0.05, 0.05);
+    for (auto& p : m.node_x0) {
+        const bool boundary = p.x < 1e-12 || p.y < 1e-12 || p.x > 1 - 1e-12 || p.y > 1 - 1e-12;
+        if (!boundary) p = p + Vec2{u(rng), u(rng)};
+    }
+    finalize_model(m);
+    return m;
+}
+
+bool on_boundary(Vec2 p) { return p.x < 1e-12 || p.y < 1e-12 || p.x > 1 - 1e-12 || p.y > 1 - 1e-12; }
+
+std::vector<Vec2> forces(const Model& m, const std::vector<Vec2>& x, ElementPass* pass = nullptr) {
+    std::vector<Vec2> f(x.size()), v(x.size());
+    const ElementPass p = add_internal_forces(m, x.data(), v.data(), f.data(), 0, m.num_tris());
+    if (pass) *pass = p;
+    return f;
+}
+
+TEST(Cst, PatchTestUniformStretchGivesUniformStressAndNoInteriorForce) {
+    const Model m = perturbed_patch(0.3, PlaneMode::Strain);
+    const Mat2 F = {1.02, 0.01, -0.005, 0.97};
+    std::vector<Vec2> x(m.node_x0.size());
+    for (size_t i = 0; i < x.size(); ++i) x[i] = F * m.node_x0[i];
+
+    const std::vector<Vec2> f = forces(m, x);
+    const Mat2 sigma = cauchy_stress(m.materials[0], F);
+    // reference force scale: stress times a cell edge (1/4)
+    const Real scale = std::sqrt(ddot(sigma, sigma)) * 0.25;
+    for (size_t i = 0; i < x.size(); ++i) {
+        if (on_boundary(m.node_x0[i])) continue;
+        // 1e-10 relative: interior forces cancel exactly up to round-off
+        EXPECT_LT(norm(f[i]), 1e-10 * scale) << "node " << i;
+    }
+    for (TriId t = 0; t < m.num_tris(); ++t) {
+        const Mat2 Ft = deformation_gradient(m, x.data(), t);
+        const Mat2 st = cauchy_stress(m.materials[0], Ft);
+        EXPECT_NEAR(st.xx, sigma.xx, 1e-10 * scale * 4);
+        EXPECT_NEAR(st.xy, sigma.xy, 1e-10 * scale * 4);
+        EXPECT_NEAR(st.yy, sigma.yy, 1e-10 * scale * 4);
+    }
+}
+
+TEST(Cst, RigidRotationBy90DegreesGivesZeroStressAndForce) {
+    const Model m = perturbed_patch(0.25, PlaneMode::Strain);
+    const Mat2 R = {0, -1, 1, 0};
+    std::vector<Vec2> x(m.node_x0.size());
+    for (size_t i = 0; i < x.size(); ++i) x[i] = R * m.node_x0[i] + Vec2{3, -2};
+    ElementPass pass;
+    const std::vector<Vec2> f = forces(m, x, &pass);
+    for (const Vec2& fi : f) EXPECT_LT(norm(fi), 1e-6);  // E = 1e9: 1e-6 N/m is 1e-15 relative
+    EXPECT_LT(std::abs(pass.strain_energy), 1e-6);
+    for (TriId t = 0; t < m.num_tris(); ++t) {
+        const Mat2 s = cauchy_stress(m.materials[0], deformation_gradient(m, x.data(), t));
+        EXPECT_LT(std::sqrt(ddot(s, s)), 1e-5);  // 1e-14 of E
+    }
+}
+
+TEST(Cst, NodalForcesAreMinusTheGradientOfTheStrainEnergy) {
+    for (const PlaneMode plane : {PlaneMode::Strain, PlaneMode::Stress}) {
+        const Model m = perturbed_patch(0.3, plane);
+        std::mt19937 rng(11);
+        std::uniform_real_distribution<Real> u(-0.03, 0.03);
+        std::vector<Vec2> x(m.node_x0.size());
+        for (size_t i = 0; i < x.size(); ++i) x[i] = m.node_x0[i] + Vec2{u(rng), u(rng)};
+
+        const std::vector<Vec2> f = forces(m, x);
+        auto energy = [&](const std::vector<Vec2>& y) {
+            ElementPass p;
+            forces(m, y, &p);
+            return p.strain_energy;
+        };
+        const Real h = 1e-6;
+        Real fmax = 0;
+        for (const Vec2& fi : f) fmax = std::max(fmax, norm(fi));
+        for (size_t i = 0; i < x.size(); ++i) {
+            for (int c = 0; c < 2; ++c) {
+                std::vector<Vec2> xp = x, xm = x;
+                (c == 0 ? xp[i].x : xp[i].y) += h;
+                (c == 0 ? xm[i].x : xm[i].y) -= h;
+                const Real fd = -(energy(xp) - energy(xm)) / (2 * h);
+                const Real fi = c == 0 ? f[i].x : f[i].y;
+                // 1e-6 relative to the largest force: central differences are O(h^2) accurate
+                EXPECT_NEAR(fi, fd, 1e-6 * fmax) << "node " << i << " component " << c;
+            }
+        }
+    }
+}
+
+TEST(Cst, SmallStrainUniaxialStressMatchesHookesLaw) {
+    const Real E = 1e9, nu = 0.3, eps = 1e-4;
+    // plane stress: uniaxial stress with lateral strain -nu eps gives sigma_xx = E eps
+    {
+        Material mat = scenes::paper_material("s", E, nu);
+        mat.plane = PlaneMode::Stress;
+        compute_lame(mat);
+        const Mat2 s = cauchy_stress(mat, {1 + eps, 0, 0, 1 - nu * eps});
+        // 1e-3 relative: geometric nonlinearity is O(eps) = 1e-4
+        EXPECT_NEAR(s.xx, E * eps, 1e-3 * E * eps);
+        EXPECT_NEAR(s.yy, 0.0, 1e-3 * E * eps);
+    }
+    // plane strain: lateral strain -nu/(1-nu) eps gives sigma_xx = E eps / (1 - nu^2)
+    {
+        Material mat = scenes::paper_material("p", E, nu);
+        mat.plane = PlaneMode::Strain;
+        compute_lame(mat);
+        const Mat2 s = cauchy_stress(mat, {1 + eps, 0, 0, 1 - nu / (1 - nu) * eps});
+        const Real expect = E * eps / (1 - nu * nu);
+        EXPECT_NEAR(s.xx, expect, 1e-3 * expect);
+        EXPECT_NEAR(s.yy, 0.0, 1e-3 * expect);
+    }
+}
+
+TEST(Cst, CriticalTimeStepIsAltitudeOverWaveSpeed) {
+    Model m;
+    m.materials.push_back(scenes::paper_material());
+    scenes::add_rectangle(m, 0, 0, 1, 1, 1, 1, 0);  // two right triangles with legs 1
+    finalize_model(m);
+    // smallest altitude of a right isosceles triangle with legs 1 is 1/sqrt(2); c_p = 1000 m/s
+    EXPECT_NEAR(element_critical_dt(m, 0), (1 / std::sqrt(2.0)) / 1000.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace fdem
