@@ -5,11 +5,13 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <regex>
 #include <string>
@@ -199,7 +201,20 @@ void extract(MeshData& mesh) {
     };
 
     // elements, entity by entity, so physical groups (sets of entities) map to element ranges
+    // MSH 2.2 repeats an element once per physical group it belongs to: merge elements with
+    // the same node set, or a triangle in two surface groups would become two overlapping ones
     std::map<std::pair<int, int>, std::vector<int32_t>> entity_elems;
+    std::map<std::array<int32_t, 3>, int32_t> seen_tri;
+    std::map<std::array<int32_t, 2>, int32_t> seen_line;
+    std::map<int32_t, int32_t> seen_point;
+    auto sorted3 = [](std::array<int32_t, 3> a) {
+        std::sort(a.begin(), a.end());
+        return a;
+    };
+    auto sorted2 = [](std::array<int32_t, 2> a) {
+        std::sort(a.begin(), a.end());
+        return a;
+    };
     gmsh::vectorpair entities;
     gmsh::model::getEntities(entities);
     for (const auto& [dim, tag] : entities) {
@@ -216,19 +231,36 @@ void extract(MeshData& mesh) {
             }
             if (type == kTriangle3) {
                 for (std::size_t e = 0; e < et.size(); ++e) {
-                    mine.push_back(static_cast<int32_t>(mesh.tris.size()));
-                    mesh.tris.push_back({to_id(en[3 * e], et[e]), to_id(en[3 * e + 1], et[e]),
-                                         to_id(en[3 * e + 2], et[e])});
+                    const std::array<int32_t, 3> t = {to_id(en[3 * e], et[e]),
+                                                      to_id(en[3 * e + 1], et[e]),
+                                                      to_id(en[3 * e + 2], et[e])};
+                    const auto [it, added] =
+                        seen_tri.emplace(sorted3(t), static_cast<int32_t>(mesh.tris.size()));
+                    if (added) {
+                        mesh.tris.push_back(t);
+                    }
+                    mine.push_back(it->second);
                 }
             } else if (type == kLine2) {
                 for (std::size_t e = 0; e < et.size(); ++e) {
-                    mine.push_back(static_cast<int32_t>(mesh.lines.size()));
-                    mesh.lines.push_back({to_id(en[2 * e], et[e]), to_id(en[2 * e + 1], et[e])});
+                    const std::array<int32_t, 2> l = {to_id(en[2 * e], et[e]),
+                                                      to_id(en[2 * e + 1], et[e])};
+                    const auto [it, added] =
+                        seen_line.emplace(sorted2(l), static_cast<int32_t>(mesh.lines.size()));
+                    if (added) {
+                        mesh.lines.push_back(l);
+                    }
+                    mine.push_back(it->second);
                 }
             } else if (type == kPoint1) {
                 for (std::size_t e = 0; e < et.size(); ++e) {
-                    mine.push_back(static_cast<int32_t>(mesh.points.size()));
-                    mesh.points.push_back(to_id(en[e], et[e]));
+                    const int32_t n = to_id(en[e], et[e]);
+                    const auto [it, added] =
+                        seen_point.emplace(n, static_cast<int32_t>(mesh.points.size()));
+                    if (added) {
+                        mesh.points.push_back(n);
+                    }
+                    mine.push_back(it->second);
                 }
             } else {
                 // never ignore an element silently: it would be a hole in a body
