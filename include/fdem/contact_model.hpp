@@ -25,25 +25,99 @@ enum class UnloadingLaw {
 };
 
 /// Contact law parameters (paper eqs. 5-20). SI units; defaults follow spec §4.5.
+/// The force function is g(d) = 2 l (d/l)^alpha while loading (docs/theory.md eq. 6.6), so that
+/// alpha = 1 gives the paper's default potential phi = d^2 and a force 2 k_n d.
 struct ContactParams {
-    Real penalty = 0;             ///< k_n [Pa] (with phi = d^2 the force is 2 k_n d); 0 = 5 E_min
-    Real alpha = 1;               ///< loading exponent of g (eq. 12), >= 1
-    Real beta = 1;                ///< unloading exponent of g (eq. 12), >= alpha
-    Real length_scale = 1;        ///< l [m] making g = l (d/l)^alpha dimensionally sound
-    Real damping = 0;             ///< gamma [N s/m^2] of f_d = gamma v_r (eq. 13)
-    bool damp_normal_only = false;///< damp only (v_r . n) n
-    Real friction = 0;            ///< Coulomb coefficient mu [-]
-    Real tangential_penalty = -1; ///< k_t [Pa/m]; < 0 means 0.1 k_n
+    Real penalty = 0;               ///< k_n [Pa] (with phi = d^2 the force is 2 k_n d); 0 = 5 E_min
+    Real alpha = 1;                 ///< loading exponent of g (eq. 12), >= 1
+    Real beta = 1;                  ///< unloading exponent of g (eq. 12), >= alpha
+    Real length_scale = 1;          ///< l [m] making g = 2 l (d/l)^alpha dimensionally sound, > 0
+    Real damping = 0;               ///< gamma [N s/m^2] of f_d = gamma v_r (eq. 13), >= 0
+    bool damp_normal_only = false;  ///< damp only (v_r . n) n instead of the full v_r
+    Real friction = 0;              ///< Coulomb coefficient mu [-], >= 0
+    Real tangential_penalty =
+        -1;  ///< k_t [Pa] (f_t = k_t s); < 0 means 0.1 k_n (resolved at build)
     UnloadingLaw unloading = UnloadingLaw::Continuous;
 };
 
+/// Contact data of a model. The first block is user input (scenario reader); everything below
+/// "derived" is written by build_contact_topology() and is read-only afterwards.
+///
+/// Node ids used by the contact code: [0, num_real_nodes) are the model's nodes; ids
+/// num_real_nodes + v are virtual node v (chord midpoints and single-triangle incenters, spec
+/// §4.4). A virtual node has no mass and no DOF: its position/velocity is sum_k w_k x_{parent_k}
+/// and a force on it goes to the parents with the same weights.
 struct ContactModel {
     ContactAlgorithm algorithm = ContactAlgorithm::None;
     ContactParams params;                    ///< default for every material pair
     std::vector<ContactParams> pair_params;  ///< num_materials^2, [a * n + b]; symmetric
     Real buffer = 0;                         ///< broad-phase skin b [m]; 0 = 0.2 h_min
-    bool two_way = true;                     ///< every body is both contactor and target
-    Real m_bar = 0;                          ///< smallest element mass [kg/m] (eq. 19)
+    /// true: every body is both contactor and target of every other body (spec §4.5-9).
+    /// false (one-way): each pair of bodies is evaluated once. If exactly one of the two is
+    /// fixed, the fixed body is the contactor and the free body's boundary nodes are the
+    /// targets (a rigid platform under a block); otherwise the lower body index is the
+    /// contactor. Two fixed bodies never interact. See is_contactor_for() below.
+    bool two_way = true;
+    Real m_bar = 0;  ///< smallest element mass [kg/m] over all bodies incl. fixed ones (eq. 19)
+    Real deep_ratio_limit = 0.5;  ///< d / (largest nodal distance of the triangle) counted as deep
+
+    // ---- derived (build_contact_topology) -------------------------------------------------
+    /// pair_params resolved: num_materials^2 entries, every default filled in. Indexed by
+    /// [material of contactor body * num_materials + material of target body].
+    std::vector<ContactParams> resolved;
+    int32_t num_materials = 0;
+    Real h_min = 0;  ///< smallest element altitude of the mesh [m]
+
+    int32_t num_real_nodes = 0;                      ///< = Model::num_nodes()
+    std::vector<std::array<NodeId, 3>> virt_parent;  ///< parents of each virtual node
+    std::vector<std::array<Real, 3>> virt_weight;    ///< frozen weights (sum 1)
+
+    /// Nodal contact distance [m] (eqs. 1-2 + spec §4.2 fallback), indexed by contact node id
+    /// (real then virtual). 0 on boundary nodes; 0 also for inner nodes of non-boundary elements
+    /// (they never appear in a contactor triangle).
+    std::vector<Real> node_dist;
+    std::vector<uint8_t> node_on_boundary;  ///< per real node: 1 = boundary node
+    int32_t num_fallback_nodes = 0;         ///< nodes whose distance came from the fallback
+
+    std::vector<uint8_t> body_fixed;  ///< per body (copy of Body::fixed for the role rule)
+
+    /// Boundary nodes (targets) of all bodies, ascending ids; those of body b are
+    /// [body_bnode_begin[b], body_bnode_begin[b+1]).
+    std::vector<NodeId> boundary_nodes;
+    std::vector<int32_t> body_bnode_begin;
+    /// Boundary edges, oriented as in their (counter-clockwise) triangle: material on the left.
+    std::vector<std::array<NodeId, 2>> boundary_edges;
+    std::vector<int32_t> body_bedge_begin;
+    std::vector<std::array<NodeId, 2>> chords;  ///< interior edges joining two boundary nodes
+    std::vector<TriId> boundary_tris;           ///< elements with >= 1 boundary node
+
+    /// Contactor sub-triangles (counter-clockwise, contact node ids); those of body b are
+    /// [body_sub_begin[b], body_sub_begin[b+1]).
+    std::vector<std::array<NodeId, 3>> sub_tri;
+    std::vector<BodyId> sub_body;
+    std::vector<TriId> sub_parent;  ///< mesh triangle the sub-triangle was cut from
+    std::vector<int32_t> body_sub_begin;
+
+    int32_t num_virtual() const { return static_cast<int32_t>(virt_parent.size()); }
+    int32_t num_contact_nodes() const { return num_real_nodes + num_virtual(); }
+    int32_t num_sub_tris() const { return static_cast<int32_t>(sub_tri.size()); }
 };
+
+/// Does body c act as contactor for the boundary nodes of body t? (role rule of
+/// ContactModel::two_way). Never true for c == t.
+inline bool is_contactor_for(const ContactModel& cm, BodyId c, BodyId t) {
+    if (c == t) return false;
+    const bool fc = cm.body_fixed[static_cast<size_t>(c)] != 0;
+    const bool ft = cm.body_fixed[static_cast<size_t>(t)] != 0;
+    if (fc && ft) return false;  // two fixed bodies: forces would move nothing
+    if (cm.two_way) return true;
+    if (fc != ft) return fc;
+    return c < t;
+}
+
+/// Resolved parameters for contactor body material a and target body material b.
+inline const ContactParams& pair_parameters(const ContactModel& cm, int32_t a, int32_t b) {
+    return cm.resolved[static_cast<size_t>(a * cm.num_materials + b)];
+}
 
 }  // namespace fdem

@@ -1,4 +1,6 @@
 // Mutable contact data: broad-phase candidates, per-pair history and scratch buffers.
+// Everything is sized by init_contact_state() and grows only (no allocation in a step after
+// warm-up).
 #pragma once
 
 #include <cstdint>
@@ -8,8 +10,61 @@
 
 namespace fdem {
 
+/// History of one (target node, contactor body) pair (spec §4.5-4, -6). Keyed by the body, not
+/// the contactor element, so that crossing an element edge keeps the tangential spring.
+struct PairHistory {
+    Real s = 0;            ///< tangential spring elongation s (eq. 17) [m]
+    Real d_max = 0;        ///< largest depth of this contact episode [m]
+    Real d_prev = 0;       ///< depth at the previous step [m]
+    Real stored = 0;       ///< stored energy of the pair at the previous step [J/m]
+    Real depth_ratio = 0;  ///< d / largest nodal distance of the triangle, previous step [-]
+    int8_t unloading = 0;  ///< literal law: 1 while on the unloading branch
+};
+
+/// One active contact (in contact at the last evaluation), sorted by (node, body).
+struct ActiveContact {
+    NodeId node = kNone;  ///< target node (real id)
+    BodyId body = kNone;  ///< contactor body
+    PairHistory h;
+};
+
 struct ContactState {
     int32_t active_contacts = 0;  ///< pairs in contact after the last step
+
+    // ---- penetration diagnostics (spec §4.6): the engine may warn or fail on them ---------
+    int32_t deep_penetrations = 0;        ///< pairs this step with d / layer > deep_ratio_limit
+    int32_t lost_inside = 0;              ///< pairs lost this step with the node inside the body
+    Real max_depth_ratio = 0;             ///< largest d / layer this step [-]
+    int64_t total_deep_penetrations = 0;  ///< running sums of the two counters above
+    int64_t total_lost_inside = 0;
+    Real max_depth_ratio_ever = 0;
+
+    // ---- broad phase (detect/broad_phase.hpp) -------------------------------------------
+    int64_t rebuilds = 0;  ///< number of broad-phase runs
+    Real skin_used = 0;    ///< accumulated 2 dt max|v| since the last rebuild [m]
+    bool need_rebuild = true;
+    /// Candidate pairs (target node, contactor body), sorted by (node, body); the candidate
+    /// sub-triangles of pair p are cand_tri[cand_begin[p] .. cand_begin[p+1]), ascending.
+    std::vector<NodeId> cand_node;
+    std::vector<BodyId> cand_body;
+    std::vector<int32_t> cand_begin;
+    std::vector<int32_t> cand_tri;
+
+    // ---- broad-phase grid scratch ----------------------------------------------------
+    std::vector<Vec2> tri_center;   ///< sub-triangle centroid at the last rebuild [m]
+    std::vector<Real> tri_radius;   ///< bounding-circle radius about the centroid [m]
+    std::vector<int32_t> tri_cell;  ///< grid cell of each sub-triangle
+    std::vector<int32_t> cell_start;
+    std::vector<int32_t> cell_items;
+    std::vector<int32_t> query;  ///< per-node scratch list
+
+    // ---- pair history: ping-pong buffers, both sorted by (node, body) ----------------
+    std::vector<ActiveContact> active;
+    std::vector<ActiveContact> active_next;
+
+    // ---- kinematics of the virtual nodes this step --------------------------------------
+    std::vector<Vec2> xv;  ///< positions [m]
+    std::vector<Vec2> vv;  ///< velocities v^{n-1/2} [m/s]
 };
 
 }  // namespace fdem

@@ -1,0 +1,64 @@
+// Geometry kernel of the smooth contact: barycentric coordinates (paper eq. 4), distance field
+// d = sum N_i d_i (eq. 3) and its gradient (eqs. 8-10). docs/theory.md §6.3.
+// Everything is inline: it sits in the innermost loop of the narrow phase.
+#pragma once
+
+#include "fdem/contact_model.hpp"
+#include "fdem/math.hpp"
+
+namespace fdem {
+
+/// Barycentric coordinates N_i = A_i / A of x in triangle (p0, p1, p2) (eq. 4), either
+/// orientation. Returns false for a degenerate triangle (N left untouched).
+inline bool barycentric(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 x, Real N[3]) {
+    const Real a2 = cross(p1 - p0, p2 - p0);  // 2A, signed
+    if (a2 == 0) return false;
+    const Real inv = 1.0 / a2;
+    N[0] = cross(p1 - x, p2 - x) * inv;
+    N[1] = cross(p2 - x, p0 - x) * inv;
+    N[2] = cross(p0 - x, p1 - x) * inv;
+    return true;
+}
+
+/// Gradients of the shape functions: grad N_i = -n_i / (2A) with n_i the scaled outward normal
+/// of the edge opposite node i (eqs. 8-10); valid for both orientations because A is signed.
+inline void shape_gradients(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 g[3]) {
+    const Real inv = 1.0 / cross(p1 - p0, p2 - p0);
+    g[0] = Vec2{p1.y - p2.y, p2.x - p1.x} * inv;
+    g[1] = Vec2{p2.y - p0.y, p0.x - p2.x} * inv;
+    g[2] = Vec2{p0.y - p1.y, p1.x - p0.x} * inv;
+}
+
+/// One evaluation of a contactor's potential field at a point.
+struct FieldSample {
+    Real N[3] = {0, 0, 0};  ///< weights that distribute the reaction to the triangle (eq. 20)
+    Real d = 0;             ///< distance field [m] (eq. 3)
+    Vec2 grad;              ///< grad d [-], points into the contactor (eq. 8)
+    Real layer = 0;         ///< largest nodal distance of the triangle [m] (depth diagnostics)
+};
+
+/// Smooth field of Lei et al. 2020 in one contactor sub-triangle with nodal distances dist[].
+/// N must already hold the barycentric coordinates of the point.
+inline void smooth_field(const Vec2 p[3], const Real dist[3], FieldSample& fs) {
+    Vec2 g[3];
+    shape_gradients(p[0], p[1], p[2], g);
+    fs.d = fs.N[0] * dist[0] + fs.N[1] * dist[1] + fs.N[2] * dist[2];
+    fs.grad = dist[0] * g[0] + dist[1] * g[1] + dist[2] * g[2];
+    fs.layer = dist[0] > dist[1] ? dist[0] : dist[1];
+    if (dist[2] > fs.layer) fs.layer = dist[2];
+}
+
+/// The field of the selected algorithm. This is the single plug-in point for a second potential
+/// (spec §1.3 baseline B: d_B = H_ref phi_B): it must fill d, grad and layer from the same
+/// inputs; the triangle-to-node law (law.hpp) is shared.
+inline void evaluate_field(ContactAlgorithm alg, const Vec2 p[3], const Real dist[3],
+                           FieldSample& fs) {
+    switch (alg) {
+        case ContactAlgorithm::Smooth:
+        default:
+            smooth_field(p, dist, fs);
+            break;
+    }
+}
+
+}  // namespace fdem

@@ -1,0 +1,358 @@
+// Contact topology of the smooth contact (paper §2, spec §4.1-4.4, docs/theory.md §6.1-6.2):
+// boundary edges/nodes/elements per body, chord splitting with virtual mid-nodes, incenter fan
+// of single-triangle bodies, contactor sub-triangles and frozen nodal contact distances.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "contact/contact.hpp"
+#include "fdem/error.hpp"
+
+namespace fdem {
+
+namespace {
+
+struct EdgeRec {
+    NodeId a, b;  // a < b
+    TriId tri;
+    int8_t local;  // edge local -> local+1 of the triangle
+};
+
+bool edge_less(const EdgeRec& x, const EdgeRec& y) {
+    if (x.a != y.a) return x.a < y.a;
+    if (x.b != y.b) return x.b < y.b;
+    return x.tri < y.tri;
+}
+
+using Key = std::array<NodeId, 2>;
+Key key(NodeId a, NodeId b) {
+    return a < b ? Key{a, b} : Key{b, a};
+}
+
+bool has_key(const std::vector<Key>& sorted, NodeId a, NodeId b) {
+    return std::binary_search(sorted.begin(), sorted.end(), key(a, b));
+}
+
+// distance from point x to segment [a, b]
+Real point_segment_distance(Vec2 x, Vec2 a, Vec2 b) {
+    const Vec2 ab = b - a;
+    const Real l2 = norm2(ab);
+    Real s = l2 > 0 ? dot(x - a, ab) / l2 : 0;
+    s = std::clamp(s, Real(0), Real(1));
+    return norm(x - (a + s * ab));
+}
+
+void check_params(const ContactParams& p, const std::string& where) {
+    auto bad = [&](const char* k, Real v, const char* expected) {
+        throw InputError(
+            SourceLocation{}, std::string("contact.") + k,
+            fmt::format("contact parameters{}: {} must be {}, got {}", where, k, expected, v));
+    };
+    if (!(p.penalty > 0)) bad("penalty", p.penalty, "> 0");
+    if (!(p.alpha >= 1)) bad("alpha", p.alpha, ">= 1");
+    if (!(p.beta >= p.alpha)) bad("beta", p.beta, ">= alpha");
+    if (!(p.length_scale > 0)) bad("length_scale", p.length_scale, "> 0");
+    if (!(p.damping >= 0)) bad("damping", p.damping, ">= 0");
+    if (!(p.friction >= 0)) bad("friction", p.friction, ">= 0");
+    if (!(p.tangential_penalty >= 0)) bad("tangential_penalty", p.tangential_penalty, ">= 0");
+}
+
+// defaults of spec §4.5, resolved once here and never at use time
+void resolve_params(Model& m) {
+    ContactModel& cm = m.contact;
+    const int32_t nm = static_cast<int32_t>(m.materials.size());
+    cm.num_materials = nm;
+    if (!cm.pair_params.empty() && cm.pair_params.size() != static_cast<size_t>(nm * nm)) {
+        throw InputError(SourceLocation{}, "contact.pair_params",
+                         fmt::format("contact pair parameters: expected {} entries "
+                                     "(num_materials^2), got {}",
+                                     nm * nm, cm.pair_params.size()));
+    }
+    Real e_min = std::numeric_limits<Real>::infinity();
+    for (const Material& mat : m.materials)
+        e_min = std::min(e_min, mat.youngs_modulus);
+    auto resolve = [](ContactParams p, Real e) {
+        if (p.penalty == 0) p.penalty = 5.0 * e;  // k_n = 5 E (spec §4.5)
+        if (p.tangential_penalty < 0) p.tangential_penalty = 0.1 * p.penalty;  // Y practice
+        return p;
+    };
+    if (nm > 0) {
+        cm.params = resolve(cm.params, e_min);
+        check_params(cm.params, "");
+    }
+    cm.resolved.resize(static_cast<size_t>(nm * nm));
+    for (int32_t a = 0; a < nm; ++a) {
+        for (int32_t b = 0; b < nm; ++b) {
+            const size_t k = static_cast<size_t>(a * nm + b);
+            const Real e = std::min(m.materials[a].youngs_modulus, m.materials[b].youngs_modulus);
+            cm.resolved[k] = cm.pair_params.empty() ? cm.params : resolve(cm.pair_params[k], e);
+            check_params(cm.resolved[k], fmt::format(" of materials \"{}\" / \"{}\"",
+                                                     m.materials[a].name, m.materials[b].name));
+        }
+    }
+}
+
+class TopologyBuilder {
+public:
+    explicit TopologyBuilder(Model& m) : m_(m), cm_(m.contact) {}
+
+    void body(BodyId b);
+
+private:
+    NodeId add_virtual(std::array<NodeId, 3> parent, std::array<Real, 3> w) {
+        cm_.virt_parent.push_back(parent);
+        cm_.virt_weight.push_back(w);
+        return cm_.num_real_nodes + cm_.num_virtual() - 1;
+    }
+    Vec2 x0(NodeId i) const {
+        if (i < cm_.num_real_nodes) return m_.node_x0[i];
+        const size_t v = static_cast<size_t>(i - cm_.num_real_nodes);
+        Vec2 x;
+        for (int k = 0; k < 3; ++k)
+            x += cm_.virt_weight[v][k] * m_.node_x0[cm_.virt_parent[v][k]];
+        return x;
+    }
+    void add_sub(BodyId b, TriId t, NodeId p, NodeId q, NodeId r) {
+        cm_.sub_tri.push_back({p, q, r});
+        cm_.sub_body.push_back(b);
+        cm_.sub_parent.push_back(t);
+    }
+
+    Model& m_;
+    ContactModel& cm_;
+    std::vector<EdgeRec> edges_;
+    std::vector<Key> bkeys_, ckeys_;
+    std::vector<NodeId> cvirt_;  // virtual node of chord ckeys_[i]
+};
+
+void TopologyBuilder::body(BodyId b) {
+    const Body& body = m_.bodies[b];
+
+    // 1. edges of the body, grouped by node pair: used once = boundary, twice = interior
+    edges_.clear();
+    for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
+        const auto& n = m_.tri_nodes[t];
+        for (int8_t k = 0; k < 3; ++k) {
+            const Key e = key(n[k], n[(k + 1) % 3]);
+            edges_.push_back({e[0], e[1], t, k});
+        }
+    }
+    std::sort(edges_.begin(), edges_.end(), edge_less);
+    bkeys_.clear();
+    std::vector<Key> interior;
+    for (size_t i = 0; i < edges_.size();) {
+        size_t j = i;
+        while (j < edges_.size() && edges_[j].a == edges_[i].a && edges_[j].b == edges_[i].b)
+            ++j;
+        if (j - i == 1) {
+            const auto& n = m_.tri_nodes[edges_[i].tri];
+            cm_.boundary_edges.push_back({n[edges_[i].local], n[(edges_[i].local + 1) % 3]});
+            bkeys_.push_back({edges_[i].a, edges_[i].b});
+            cm_.node_on_boundary[edges_[i].a] = 1;
+            cm_.node_on_boundary[edges_[i].b] = 1;
+        } else if (j - i == 2) {
+            interior.push_back({edges_[i].a, edges_[i].b});
+        } else {
+            throw InputError(SourceLocation{}, "mesh",
+                             fmt::format("body {} (\"{}\"): edge between nodes {} and {} is shared "
+                                         "by {} triangles; a 2-D mesh edge may have at most 2",
+                                         b, body.name, edges_[i].a, edges_[i].b, j - i));
+        }
+        i = j;
+    }
+    cm_.body_bedge_begin.push_back(static_cast<int32_t>(cm_.boundary_edges.size()));
+    for (NodeId i = body.node_begin; i < body.node_end; ++i) {
+        if (cm_.node_on_boundary[i]) cm_.boundary_nodes.push_back(i);
+    }
+    cm_.body_bnode_begin.push_back(static_cast<int32_t>(cm_.boundary_nodes.size()));
+
+    // 2. chords: interior edges joining two boundary nodes get a virtual mid-node (spec §4.4)
+    ckeys_.clear();
+    cvirt_.clear();
+    for (const Key& e : interior) {
+        if (cm_.node_on_boundary[e[0]] && cm_.node_on_boundary[e[1]]) {
+            cm_.chords.push_back(e);
+            ckeys_.push_back(e);
+            cvirt_.push_back(add_virtual({e[0], e[1], e[0]}, {0.5, 0.5, 0.0}));
+        }
+    }
+    auto chord_mid = [&](NodeId p, NodeId q) {
+        const auto it = std::lower_bound(ckeys_.begin(), ckeys_.end(), key(p, q));
+        return cvirt_[static_cast<size_t>(it - ckeys_.begin())];
+    };
+
+    // 3. boundary elements -> contactor sub-triangles (all counter-clockwise)
+    for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
+        const auto& n = m_.tri_nodes[t];
+        if (!cm_.node_on_boundary[n[0]] && !cm_.node_on_boundary[n[1]] &&
+            !cm_.node_on_boundary[n[2]]) {
+            continue;
+        }
+        cm_.boundary_tris.push_back(t);
+        int nb = 0, nc = 0;
+        bool is_chord[3];
+        for (int k = 0; k < 3; ++k) {
+            const NodeId p = n[k], q = n[(k + 1) % 3];
+            nb += has_key(bkeys_, p, q) ? 1 : 0;
+            is_chord[k] = has_key(ckeys_, p, q);
+            nc += is_chord[k] ? 1 : 0;
+        }
+        if (nb == 3) {
+            // single-triangle body (paper case 2): fan from the incenter, weights = opposite
+            // edge lengths (spec §4.4-4), which makes the field exact (spec §6.5)
+            const Real la = norm(m_.node_x0[n[1]] - m_.node_x0[n[2]]);
+            const Real lb = norm(m_.node_x0[n[2]] - m_.node_x0[n[0]]);
+            const Real lc = norm(m_.node_x0[n[0]] - m_.node_x0[n[1]]);
+            const Real per = la + lb + lc;
+            const NodeId c = add_virtual(n, {la / per, lb / per, lc / per});
+            add_sub(b, t, n[0], n[1], c);
+            add_sub(b, t, n[1], n[2], c);
+            add_sub(b, t, n[2], n[0], c);
+        } else if (nc == 0) {
+            add_sub(b, t, n[0], n[1], n[2]);
+        } else if (nc == 1) {
+            // chord B-C opposite A: (A, B, M), (A, M, C)
+            int k = 0;
+            while (!is_chord[k])
+                ++k;
+            const NodeId B = n[k], C = n[(k + 1) % 3], A = n[(k + 2) % 3];
+            const NodeId M = chord_mid(B, C);
+            add_sub(b, t, A, B, M);
+            add_sub(b, t, A, M, C);
+        } else if (nc == 2) {
+            // chords P0-P1 and P0-P2: (P0, M1, M2), (M1, P1, P2), (M1, P2, M2)
+            int k = 0;
+            while (is_chord[k])
+                ++k;
+            const NodeId P1 = n[k], P2 = n[(k + 1) % 3], P0 = n[(k + 2) % 3];
+            const NodeId M1 = chord_mid(P0, P1), M2 = chord_mid(P0, P2);
+            add_sub(b, t, P0, M1, M2);
+            add_sub(b, t, M1, P1, P2);
+            add_sub(b, t, M1, P2, M2);
+        } else {
+            // 1 -> 4 midpoint subdivision
+            const NodeId mab = chord_mid(n[0], n[1]), mbc = chord_mid(n[1], n[2]),
+                         mca = chord_mid(n[2], n[0]);
+            add_sub(b, t, n[0], mab, mca);
+            add_sub(b, t, mab, n[1], mbc);
+            add_sub(b, t, mca, mbc, n[2]);
+            add_sub(b, t, mab, mbc, mca);
+        }
+    }
+    const size_t sub_begin = static_cast<size_t>(cm_.body_sub_begin.back());
+    cm_.body_sub_begin.push_back(static_cast<int32_t>(cm_.sub_tri.size()));
+
+    // 4. nodal distances, eqs. 1-2: height 2A/l over every boundary edge of a sub-triangle,
+    //    minimum over the sub-triangles (reference configuration, frozen)
+    constexpr Real kUnset = std::numeric_limits<Real>::infinity();
+    cm_.node_dist.resize(static_cast<size_t>(cm_.num_contact_nodes()), 0.0);
+    for (size_t s = sub_begin; s < cm_.sub_tri.size(); ++s) {
+        for (NodeId i : cm_.sub_tri[s]) {
+            const bool bnode = i < cm_.num_real_nodes && cm_.node_on_boundary[i];
+            if (!bnode) cm_.node_dist[i] = kUnset;
+        }
+    }
+    for (size_t s = sub_begin; s < cm_.sub_tri.size(); ++s) {
+        const auto& q = cm_.sub_tri[s];
+        const Real a2 = cross(x0(q[1]) - x0(q[0]), x0(q[2]) - x0(q[0]));  // 2A
+        for (int k = 0; k < 3; ++k) {
+            const NodeId p = q[k], r = q[(k + 1) % 3], o = q[(k + 2) % 3];
+            if (p >= cm_.num_real_nodes || r >= cm_.num_real_nodes) continue;
+            if (!has_key(bkeys_, p, r)) continue;
+            if (o < cm_.num_real_nodes && cm_.node_on_boundary[o]) continue;
+            const Real h = a2 / norm(x0(r) - x0(p));
+            cm_.node_dist[o] = std::min(cm_.node_dist[o], h);
+        }
+    }
+
+    // 5. fallback (spec §4.2): true distance to the body boundary for nodes eq. 1 missed
+    const size_t e0 = static_cast<size_t>(cm_.body_bedge_begin[b]);
+    const size_t e1 = static_cast<size_t>(cm_.body_bedge_begin[b + 1]);
+    for (size_t s = sub_begin; s < cm_.sub_tri.size(); ++s) {
+        for (NodeId i : cm_.sub_tri[s]) {
+            if (cm_.node_dist[i] != kUnset) continue;
+            Real dmin = kUnset;
+            const Vec2 xi = x0(i);
+            for (size_t e = e0; e < e1; ++e) {
+                const auto& be = cm_.boundary_edges[e];
+                dmin = std::min(dmin,
+                                point_segment_distance(xi, m_.node_x0[be[0]], m_.node_x0[be[1]]));
+            }
+            cm_.node_dist[i] = dmin;
+            ++cm_.num_fallback_nodes;
+        }
+    }
+}
+
+}  // namespace
+
+void build_contact_topology(Model& m) {
+    ContactModel& cm = m.contact;
+    cm.resolved.clear();
+    cm.virt_parent.clear();
+    cm.virt_weight.clear();
+    cm.node_dist.clear();
+    cm.node_on_boundary.clear();
+    cm.boundary_nodes.clear();
+    cm.body_bnode_begin.clear();
+    cm.boundary_edges.clear();
+    cm.body_bedge_begin.clear();
+    cm.chords.clear();
+    cm.boundary_tris.clear();
+    cm.sub_tri.clear();
+    cm.sub_body.clear();
+    cm.sub_parent.clear();
+    cm.body_sub_begin.clear();
+    cm.num_fallback_nodes = 0;
+    cm.num_real_nodes = m.num_nodes();
+    if (cm.algorithm == ContactAlgorithm::None) return;
+    if (cm.algorithm != ContactAlgorithm::Smooth) {
+        throw InputError(SourceLocation{}, "contact.algorithm",
+                         "contact algorithm: only \"smooth\" is implemented so far (the legacy "
+                         "Munjiza potentials plug into contact/field.hpp evaluate_field)");
+    }
+    resolve_params(m);
+
+    // m_bar = smallest element mass over all bodies, fixed ones included (eq. 19, spec §4.5-7);
+    // h_min = smallest altitude (buffer default and depth diagnostics)
+    cm.h_min = std::numeric_limits<Real>::infinity();
+    Real m_bar = std::numeric_limits<Real>::infinity();
+    for (TriId t = 0; t < m.num_tris(); ++t) {
+        const auto& n = m.tri_nodes[t];
+        const Vec2 a = m.node_x0[n[0]], b = m.node_x0[n[1]], c = m.node_x0[n[2]];
+        const Real area = std::abs(signed_area(a, b, c));
+        const Real lmax = std::max({norm(b - a), norm(c - b), norm(a - c)});
+        cm.h_min = std::min(cm.h_min, 2.0 * area / lmax);
+        m_bar = std::min(m_bar, m.materials[m.tri_material[t]].density * area);
+    }
+    if (m.num_tris() == 0) cm.h_min = 0;
+    if (cm.m_bar == 0) cm.m_bar = m.num_tris() > 0 ? m_bar : 0;
+    if (cm.buffer == 0) cm.buffer = 0.2 * cm.h_min;  // spec §2.5
+    if (!(cm.buffer > 0) && m.num_tris() > 0) {
+        throw InputError(SourceLocation{}, "contact.buffer",
+                         fmt::format("contact buffer must be > 0, got {}", cm.buffer));
+    }
+    if (!(cm.m_bar > 0) && m.num_tris() > 0) {
+        throw InputError(SourceLocation{}, "density",
+                         fmt::format("contact needs the smallest element mass > 0 (eq. 19), got "
+                                     "{}; every body, fixed ones included, needs a density",
+                                     cm.m_bar));
+    }
+
+    cm.body_fixed.resize(static_cast<size_t>(m.num_bodies()));
+    for (BodyId b = 0; b < m.num_bodies(); ++b)
+        cm.body_fixed[b] = m.bodies[b].fixed ? 1 : 0;
+    cm.node_on_boundary.assign(static_cast<size_t>(m.num_nodes()), 0);
+    cm.node_dist.assign(static_cast<size_t>(m.num_nodes()), 0.0);
+    cm.body_bnode_begin.push_back(0);
+    cm.body_bedge_begin.push_back(0);
+    cm.body_sub_begin.push_back(0);
+    TopologyBuilder tb(m);
+    for (BodyId b = 0; b < m.num_bodies(); ++b)
+        tb.body(b);
+    cm.node_dist.resize(static_cast<size_t>(cm.num_contact_nodes()), 0.0);
+}
+
+}  // namespace fdem

@@ -1,0 +1,21 @@
+// Broad phase of the triangle-to-node contact (spec §2.5, docs/theory.md §6.8): candidate
+// (target boundary node, contactor sub-triangle) couples whose bounding objects are closer than
+// the buffer b, on a uniform grid filled by counting sort (linear time, NBS-like).
+#pragma once
+
+#include "fdem/model.hpp"
+#include "fdem/state.hpp"
+
+namespace fdem {
+
+/// Rebuild cs.cand_* from current positions: x = real node positions, xv = virtual node
+/// positions (ContactState::xv). A couple (node j, sub-triangle tau) is accepted when
+/// is_contactor_for(body(tau), body(j)) and |x_j - c_tau| < r_tau + b, with c_tau the centroid
+/// and r_tau the largest centroid-vertex distance. Output is sorted by (node, body, tri) and does
+/// not depend on threading. Uses only the preallocated scratch of cs (grows only).
+void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs);
+
+/// O(N_nodes * N_tris) reference implementation of find_candidates (tests, T11).
+void find_candidates_brute_force(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs);
+
+}  // namespace fdem
