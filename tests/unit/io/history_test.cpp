@@ -1,0 +1,139 @@
+// CSV history: exact header, bit-exact values, energy_error against the first row, flush per row.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fdem/error.hpp"
+#include "fdem/output.hpp"
+
+namespace fdem {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path test_file(const std::string& name) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const fs::path dir =
+        fs::path(::testing::TempDir()) / (std::string("fdem_history_") + info->name());
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir / name;
+}
+
+std::vector<std::string> read_lines(const fs::path& p) {
+    std::ifstream in(p);
+    std::vector<std::string> out;
+    for (std::string line; std::getline(in, line);)
+        out.push_back(line);
+    return out;
+}
+
+std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> out;
+    std::stringstream ss(line);
+    for (std::string item; std::getline(ss, item, ',');)
+        out.push_back(item);
+    return out;
+}
+
+constexpr const char* kHeader =
+    "step,time,kinetic,strain,contact,work_gravity,work_external,dissipated_viscous,"
+    "dissipated_contact,total,energy_error,active_contacts";
+
+TEST(HistoryWriter, HeaderAndBitExactRowsFlushedAtOnce) {
+    const fs::path file = test_file("history.csv");
+    const Model m;
+    State s;
+    HistoryWriter h(file.string());
+    EXPECT_EQ(read_lines(file), std::vector<std::string>{kHeader});
+
+    // row 0: values that need all 17 digits to round-trip
+    s.step = 0;
+    s.time = 0.1 + 0.2;
+    s.energy.kinetic = 1.0 / 3.0;
+    s.energy.strain = 2.0 / 7.0;
+    s.energy.contact = 1e-300;
+    s.energy.work_gravity = 0.125;
+    s.energy.work_external = -0.5;
+    s.energy.dissipated_viscous = 3.0;
+    s.energy.dissipated_contact = 1e20;
+    s.contact.active_contacts = 5;
+    h.write(m, s);
+    const Real total0 = s.energy.total();
+
+    // row 1: energy moved between terms and a drift of 0.25 J/m (exact in binary)
+    s.step = 100;
+    s.time = 1e-3;
+    s.energy.kinetic = 0.0;
+    s.energy.dissipated_viscous = 3.0 + 1.0 / 3.0 + 0.25;
+    s.contact.active_contacts = 0;
+    h.write(m, s);
+    const Real total1 = s.energy.total();
+
+    // no close: every row must already be on disk (flushed per row)
+    const auto lines = read_lines(file);
+    ASSERT_EQ(lines.size(), 3u);
+    const auto r0 = split(lines[1]);
+    const auto r1 = split(lines[2]);
+    ASSERT_EQ(r0.size(), 12u);
+    ASSERT_EQ(r1.size(), 12u);
+
+    EXPECT_EQ(r0[0], "0");
+    EXPECT_EQ(std::strtod(r0[1].c_str(), nullptr), 0.1 + 0.2);
+    EXPECT_EQ(std::strtod(r0[2].c_str(), nullptr), 1.0 / 3.0);
+    EXPECT_EQ(std::strtod(r0[3].c_str(), nullptr), 2.0 / 7.0);
+    EXPECT_EQ(std::strtod(r0[4].c_str(), nullptr), 1e-300);
+    EXPECT_EQ(std::strtod(r0[5].c_str(), nullptr), 0.125);
+    EXPECT_EQ(std::strtod(r0[6].c_str(), nullptr), -0.5);
+    EXPECT_EQ(std::strtod(r0[7].c_str(), nullptr), 3.0);
+    EXPECT_EQ(std::strtod(r0[8].c_str(), nullptr), 1e20);
+    EXPECT_EQ(std::strtod(r0[9].c_str(), nullptr), total0);
+    EXPECT_EQ(r0[10], "0");  // energy_error is relative to the first row
+    EXPECT_EQ(r0[11], "5");
+
+    EXPECT_EQ(r1[0], "100");
+    EXPECT_EQ(std::strtod(r1[9].c_str(), nullptr), total1);
+    EXPECT_EQ(std::strtod(r1[10].c_str(), nullptr), total1 - total0);
+    EXPECT_EQ(r1[11], "0");
+}
+
+TEST(HistoryWriter, EnergyErrorIsDriftOfTheBalance) {
+    // kinetic -> strain exchange conserves the total; a 0.5 J/m gravity work without a matching
+    // energy gain shows up as energy_error = -0.5 (total = ... - work_gravity)
+    const fs::path file = test_file("history.csv");
+    const Model m;
+    State s;
+    HistoryWriter h(file.string());
+    s.energy.kinetic = 4.0;
+    h.write(m, s);
+    s.energy.kinetic = 1.0;
+    s.energy.strain = 3.0;
+    h.write(m, s);
+    s.energy.work_gravity = 0.5;
+    h.write(m, s);
+    const auto lines = read_lines(file);
+    ASSERT_EQ(lines.size(), 4u);
+    EXPECT_EQ(split(lines[1])[10], "0");
+    EXPECT_EQ(split(lines[2])[10], "0");
+    EXPECT_EQ(split(lines[3])[10], "-0.5");
+    EXPECT_EQ(split(lines[3])[9], "3.5");
+}
+
+TEST(HistoryWriter, UnwritablePathIsASimulationError) {
+    const fs::path file = test_file("x") / "missing_dir" / "history.csv";
+    try {
+        HistoryWriter h(file.string());
+        FAIL() << "expected SimulationError";
+    } catch (const SimulationError& e) {
+        EXPECT_NE(std::string(e.what()).find("missing_dir/history.csv"), std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace fdem
