@@ -1,0 +1,363 @@
+// Baseline A: Munjiza's per-triangle potential phi_e = 3 min N_i with the exact
+// triangle-to-triangle edge integration of the Y code (spec §1.2, docs/theory.md §7.1-7.3).
+// Re-implemented from the formulas of the spec, not from the Y sources.
+#include "contact/legacy_triangle.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "contact/field.hpp"
+
+namespace fdem {
+
+bool legacy_triangle_potential(const Vec2 p[3], Vec2 x, Real& phi, Vec2& grad) {
+    Real N[3];
+    if (!barycentric(p[0], p[1], p[2], x, N)) return false;
+
+    // the smallest barycentric coordinate selects the sub-triangle (edge opposite k, centroid)
+    // that contains x; there phi = A(i, j, x) / A(i, j, c) = 3 N_k (theory eq. 7.1)
+    int k = 0;
+    if (N[1] < N[k]) k = 1;
+    if (N[2] < N[k]) k = 2;
+    Vec2 g[3];
+    shape_gradients(p[0], p[1], p[2], g);
+    phi = 3.0 * N[k];
+    grad = 3.0 * g[k];
+    return true;
+}
+
+bool legacy_edge_integral(Vec2 a, Vec2 b, const Vec2 p[3], EdgeIntegral& out) {
+    out = EdgeIntegral{};
+
+    // step 1: barycentric coordinates of both edge nodes in p; lambda_j(s) is linear in s
+    if (!barycentric(p[0], p[1], p[2], a, out.lambda_a)) return false;
+    barycentric(p[0], p[1], p[2], b, out.lambda_b);
+    const Real* al = out.lambda_a;
+    const Real* be = out.lambda_b;
+
+    // steps 3-4: clip [0, 1] to lambda_j(s) >= 0 for all j (the part of the edge inside p)
+    Real s_min = 0, s_max = 1;
+    for (int j = 0; j < 3; ++j) {
+        if (al[j] < 0 && be[j] < 0) return false;  // whole edge beyond one side of p
+        if (al[j] < 0) {
+            s_min = std::max(s_min, al[j] / (al[j] - be[j]));  // entering: lambda_j rises to 0
+        } else if (be[j] < 0) {
+            s_max = std::min(s_max, al[j] / (al[j] - be[j]));  // leaving: lambda_j falls to 0
+        }
+    }
+    if (!(s_max > s_min)) return false;
+
+    // step 5: break points of q(s) = min_j lambda_j(s): the clip ends and every crossing
+    // lambda_j = lambda_l inside the interval (crossings where neither is the minimum are
+    // harmless extra points: q stays linear between consecutive points)
+    int n = 0;
+    out.s[n++] = s_min;
+    for (int j = 0; j < 3; ++j) {
+        for (int l = j + 1; l < 3; ++l) {
+            const Real da = al[j] - al[l];
+            const Real db = be[j] - be[l];
+            if ((da < 0 && db > 0) || (da > 0 && db < 0)) {
+                const Real sc = da / (da - db);
+                if (sc > s_min && sc < s_max) out.s[n++] = sc;
+            }
+        }
+    }
+    out.s[n++] = s_max;
+    std::sort(out.s + 1, out.s + n - 1);
+    out.num_breaks = n;
+    out.s_min = s_min;
+    out.s_max = s_max;
+
+    // q at the break points; >= 0 inside p (round-off at the clip ends is cut to 0)
+    Real s_sum = 0;
+    for (int k = 0; k < n; ++k) {
+        const Real sk = out.s[k];
+        Real q = al[0] + sk * (be[0] - al[0]);
+        q = std::min(q, al[1] + sk * (be[1] - al[1]));
+        q = std::min(q, al[2] + sk * (be[2] - al[2]));
+        out.q[k] = std::max(q, Real(0));
+        s_sum += sk;
+    }
+    out.s_mean = s_sum / n;
+
+    // step 6: exact integrals of the piecewise-linear q (theory eqs. 7.3-7.4)
+    for (int k = 0; k + 1 < n; ++k) {
+        const Real s0 = out.s[k], s1 = out.s[k + 1], q0 = out.q[k], q1 = out.q[k + 1];
+        const Real ds = s1 - s0;
+        out.I0 += 0.5 * (q0 + q1) * ds;
+        out.I1 += ds / 6.0 * (q0 * (2.0 * s0 + s1) + q1 * (s0 + 2.0 * s1));
+    }
+    out.hit = out.I0 > 0;
+    return out.hit;
+}
+
+Real legacy_edge_pass(const Vec2 xe[3], const Vec2 xp[3], Real penalty, Vec2 fe[3], Vec2 fp[3],
+                      const LegacyFriction* fr, const Vec2* ve, const Vec2* vp, Real* slide) {
+    const Real ae2 = cross(xe[1] - xe[0], xe[2] - xe[0]);
+    if (ae2 == 0) return 0;
+    const Real o = ae2 > 0 ? 1.0 : -1.0;  // orientation: outward normals for either sense
+    const bool friction = fr != nullptr && ve != nullptr && vp != nullptr && slide != nullptr &&
+                          fr->friction > 0 && fr->tangential_penalty > 0;
+    Real dissipated = 0;
+
+    for (int k = 0; k < 3; ++k) {
+        const int k1 = (k + 1) % 3;
+        const Vec2 a = xe[k], b = xe[k1];
+        EdgeIntegral ei;
+        if (!legacy_edge_integral(a, b, xp, ei)) {
+            if (slide != nullptr) slide[k] = 0;  // out of contact: the tangential spring resets
+            continue;
+        }
+
+        // step 7: normal force -p int phi dGamma nu_hat, split by the linear shape functions of
+        // the edge: F = 3 p I0 (times |nu| = L), F_b = 3 p I1, F_a = F - F_b (theory eq. 7.5)
+        const Vec2 nu = o * Vec2{b.y - a.y, a.x - b.x};  // scaled outward normal, |nu| = L
+        const Real F = 3.0 * penalty * ei.I0;
+        const Real Fb = 3.0 * penalty * ei.I1;
+        const Real Fa = F - Fb;
+        Vec2 f_a = -Fa * nu;
+        Vec2 f_b = -Fb * nu;
+
+        // step 9: Y friction, a tangential spring on the sliding distance of this edge, with the
+        // relative velocity at the mean break-point abscissa and a return mapping to mu |F|
+        if (friction) {
+            const Real L = norm(nu);
+            const Vec2 t = (b - a) / L;
+            const Real sm = ei.s_mean;
+            const Vec2 v_edge = (1.0 - sm) * ve[k] + sm * ve[k1];
+            Vec2 v_tri;
+            for (int j = 0; j < 3; ++j) {
+                const Real lj = (1.0 - sm) * ei.lambda_a[j] + sm * ei.lambda_b[j];
+                v_tri += lj * vp[j];
+            }
+            const Real trial = slide[k] + dot(v_edge - v_tri, t) * fr->dt;
+            const Real cap = fr->friction * F * L;  // mu |normal force|
+            const Real pt = fr->tangential_penalty;
+            Real s = trial;
+            if (pt * std::abs(trial) > cap) {
+                s = std::copysign(cap / pt, trial);
+                dissipated += 0.5 * pt * (trial * trial - s * s);  // spring energy lost to slip
+            }
+            slide[k] = s;
+            const Vec2 ft = (-pt * s) * t;  // opposes the edge's sliding relative to p
+            f_a += (Fa / F) * ft;
+            f_b += (Fb / F) * ft;
+        }
+        fe[k] += f_a;
+        fe[k1] += f_b;
+
+        // step 8: reaction on p at the edge nodes, -lambda_j(x_n) f_n: same resultant and,
+        // because sum_j lambda_j(x_n) x_j = x_n, the same moment (theory eq. 7.6)
+        for (int j = 0; j < 3; ++j) {
+            fp[j] -= ei.lambda_a[j] * f_a;
+            fp[j] -= ei.lambda_b[j] * f_b;
+        }
+    }
+    return dissipated;
+}
+
+Real legacy_triangle_couple(const Vec2 xa[3], const Vec2 xb[3], Real penalty, Vec2 fa[3],
+                            Vec2 fb[3], const LegacyFriction* fr, const Vec2* va, const Vec2* vb,
+                            Real* slide) {
+    for (int i = 0; i < 3; ++i) {
+        fa[i] = Vec2{};
+        fb[i] = Vec2{};
+    }
+    Real dissipated = legacy_edge_pass(xa, xb, penalty, fa, fb, fr, va, vb, slide);
+    dissipated += legacy_edge_pass(xb, xa, penalty, fb, fa, fr, vb, va,
+                                   slide != nullptr ? slide + 3 : nullptr);
+    return dissipated;
+}
+
+// ---- couples (broad phase of the triangle-to-triangle scheme, spec §2.3) ----------------------
+
+namespace {
+
+bool couple_allowed(const Model& m, TriId a, TriId b) {
+    const ContactModel& cm = m.contact;
+    const BodyId ba = m.tri_body[a], bb = m.tri_body[b];
+    return is_contactor_for(cm, ba, bb) || is_contactor_for(cm, bb, ba);
+}
+
+Real bounding_circles(const Model& m, const Vec2* x, LegacyTriangleState& ls) {
+    const auto& bt = m.contact.boundary_tris;
+    ls.center.resize(bt.size());
+    ls.radius.resize(bt.size());
+    Real r_max = 0;
+    for (size_t i = 0; i < bt.size(); ++i) {
+        const auto& n = m.tri_nodes[bt[i]];
+        const Vec2 p = x[n[0]], q = x[n[1]], r = x[n[2]];
+        const Vec2 c = (p + q + r) / 3.0;
+        const Real rad = std::sqrt(std::max({norm2(p - c), norm2(q - c), norm2(r - c)}));
+        ls.center[i] = c;
+        ls.radius[i] = rad;
+        r_max = std::max(r_max, rad);
+    }
+    return r_max;
+}
+
+// replace ls.couples by ls.next, carrying the sliding history of couples present in both
+void merge_history(LegacyTriangleState& ls) {
+    size_t k = 0;
+    for (LegacyCouple& c : ls.next) {
+        while (k < ls.couples.size() &&
+               (ls.couples[k].a < c.a || (ls.couples[k].a == c.a && ls.couples[k].b < c.b))) {
+            ++k;
+        }
+        if (k < ls.couples.size() && ls.couples[k].a == c.a && ls.couples[k].b == c.b) {
+            std::copy(ls.couples[k].slide, ls.couples[k].slide + 6, c.slide);
+        }
+    }
+    ls.couples.swap(ls.next);
+    ++ls.rebuilds;
+    ls.need_rebuild = false;
+    ls.skin_used = 0;
+}
+
+}  // namespace
+
+void find_legacy_couples(const Model& m, const Vec2* x, LegacyTriangleState& ls) {
+    const auto& bt = m.contact.boundary_tris;
+    const Real buf = m.contact.buffer;
+    ls.next.clear();
+    const int32_t nt = static_cast<int32_t>(bt.size());
+    if (nt == 0) {
+        merge_history(ls);
+        return;
+    }
+    const Real r_max = bounding_circles(m, x, ls);
+
+    // grid over the centroids; cell >= 2 r_max + b, so every partner centroid lies in the 3x3
+    // block around a triangle's cell (NBS idea, spec §2.2)
+    Vec2 lo = ls.center[0], hi = lo;
+    for (int32_t i = 1; i < nt; ++i) {
+        lo.x = std::min(lo.x, ls.center[i].x);
+        lo.y = std::min(lo.y, ls.center[i].y);
+        hi.x = std::max(hi.x, ls.center[i].x);
+        hi.y = std::max(hi.y, ls.center[i].y);
+    }
+    Real cell = 2.0 * r_max + buf;
+    // at most ~4 cells per triangle for sparse layouts (larger cells stay correct)
+    const Real max_cells = 4.0 * nt + 16.0;
+    const Real area_cells = ((hi.x - lo.x) / cell + 1) * ((hi.y - lo.y) / cell + 1);
+    if (area_cells > max_cells) cell *= std::sqrt(area_cells / max_cells) * 1.01;
+    const int32_t nx = static_cast<int32_t>((hi.x - lo.x) / cell) + 1;
+    const int32_t ny = static_cast<int32_t>((hi.y - lo.y) / cell) + 1;
+    const Real inv = 1.0 / cell;
+
+    // counting sort by cell (stable: ascending list index within a cell)
+    const size_t ncell = static_cast<size_t>(nx) * static_cast<size_t>(ny);
+    ls.cell_start.assign(ncell + 1, 0);
+    ls.cell.resize(static_cast<size_t>(nt));
+    for (int32_t i = 0; i < nt; ++i) {
+        const int32_t ix = std::min(nx - 1, static_cast<int32_t>((ls.center[i].x - lo.x) * inv));
+        const int32_t iy = std::min(ny - 1, static_cast<int32_t>((ls.center[i].y - lo.y) * inv));
+        ls.cell[i] = iy * nx + ix;
+        ++ls.cell_start[static_cast<size_t>(ls.cell[i]) + 1];
+    }
+    for (size_t c = 0; c < ncell; ++c)
+        ls.cell_start[c + 1] += ls.cell_start[c];
+    ls.cell_items.resize(static_cast<size_t>(nt));
+    ls.cursor.assign(ls.cell_start.begin(), ls.cell_start.end() - 1);
+    for (int32_t i = 0; i < nt; ++i) {
+        ls.cell_items[static_cast<size_t>(ls.cursor[static_cast<size_t>(ls.cell[i])]++)] = i;
+    }
+
+    // each triangle against the 3x3 block; keep partners with a larger id, sorted
+    for (int32_t i = 0; i < nt; ++i) {
+        const TriId ta = bt[i];
+        const int32_t ix = ls.cell[i] % nx, iy = ls.cell[i] / nx;
+        ls.query.clear();
+        for (int32_t cy = std::max(0, iy - 1); cy <= std::min(ny - 1, iy + 1); ++cy) {
+            for (int32_t cx = std::max(0, ix - 1); cx <= std::min(nx - 1, ix + 1); ++cx) {
+                const size_t c = static_cast<size_t>(cy * nx + cx);
+                for (int32_t k = ls.cell_start[c]; k < ls.cell_start[c + 1]; ++k) {
+                    const int32_t j = ls.cell_items[static_cast<size_t>(k)];
+                    const TriId tb = bt[j];
+                    if (tb <= ta) continue;
+                    const Real reach = ls.radius[i] + ls.radius[j] + buf;
+                    if (norm2(ls.center[i] - ls.center[j]) >= reach * reach) continue;
+                    if (!couple_allowed(m, ta, tb)) continue;
+                    ls.query.push_back(tb);
+                }
+            }
+        }
+        std::sort(ls.query.begin(), ls.query.end());
+        for (TriId tb : ls.query) {
+            LegacyCouple c;
+            c.a = ta;
+            c.b = tb;
+            ls.next.push_back(c);
+        }
+    }
+    merge_history(ls);
+}
+
+void find_legacy_couples_brute_force(const Model& m, const Vec2* x, LegacyTriangleState& ls) {
+    const auto& bt = m.contact.boundary_tris;
+    const Real buf = m.contact.buffer;
+    ls.next.clear();
+    bounding_circles(m, x, ls);
+    for (size_t i = 0; i < bt.size(); ++i) {
+        for (size_t j = 0; j < bt.size(); ++j) {
+            if (bt[j] <= bt[i]) continue;
+            const Real reach = ls.radius[i] + ls.radius[j] + buf;
+            if (norm2(ls.center[i] - ls.center[j]) >= reach * reach) continue;
+            if (!couple_allowed(m, bt[i], bt[j])) continue;
+            LegacyCouple c;
+            c.a = bt[i];
+            c.b = bt[j];
+            ls.next.push_back(c);
+        }
+    }
+    std::sort(ls.next.begin(), ls.next.end(), [](const LegacyCouple& p, const LegacyCouple& q) {
+        return p.a != q.a ? p.a < q.a : p.b < q.b;
+    });
+    merge_history(ls);
+}
+
+void add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& ls) {
+    const ContactModel& cm = m.contact;
+
+    // Verlet skin (spec §2.3): rebuild when the accumulated 2 dt max|v| exceeds the buffer
+    Real v2 = 0;
+    for (const Vec2& v : s.v)
+        v2 = std::max(v2, norm2(v));
+    ls.skin_used += 2.0 * s.dt * std::sqrt(v2);
+    if (ls.need_rebuild || ls.skin_used > cm.buffer) find_legacy_couples(m, s.x.data(), ls);
+
+    ls.active = 0;
+    Real dissipated = 0;
+    for (LegacyCouple& c : ls.couples) {
+        const auto& na = m.tri_nodes[c.a];
+        const auto& nb = m.tri_nodes[c.b];
+        Vec2 xa[3], xb[3], va[3], vb[3], fa[3], fb[3];
+        for (int i = 0; i < 3; ++i) {
+            xa[i] = s.x[na[i]];
+            xb[i] = s.x[nb[i]];
+            va[i] = s.v[na[i]];
+            vb[i] = s.v[nb[i]];
+        }
+        const int32_t mat_a = m.bodies[m.tri_body[c.a]].material;
+        const int32_t mat_b = m.bodies[m.tri_body[c.b]].material;
+        const ContactParams& p = pair_parameters(cm, mat_a, mat_b);
+        LegacyFriction fr;
+        fr.tangential_penalty = p.tangential_penalty;
+        fr.friction = p.friction;
+        fr.dt = s.dt;
+        dissipated += legacy_triangle_couple(xa, xb, p.penalty, fa, fb, &fr, va, vb, c.slide);
+
+        bool any = false;
+        for (int i = 0; i < 3; ++i) {
+            any = any || fa[i].x != 0 || fa[i].y != 0;
+            s.f[na[i]] += fa[i];
+            s.f_contact[na[i]] += fa[i];
+            s.f[nb[i]] += fb[i];
+            s.f_contact[nb[i]] += fb[i];
+        }
+        if (any) ++ls.active;
+    }
+    s.energy.dissipated_contact += dissipated;
+}
+
+}  // namespace fdem
