@@ -66,6 +66,17 @@ struct MassDamping {
     Real until = 0;        ///< [s]
 };
 
+/// Parallel schedule of the element loop, derived by finalize_model() (docs/performance.md).
+/// The triangles of each non-fixed body are cut into chunks of contiguous ids; chunks of one
+/// color share no node, so they run concurrently, and every node sums the forces of its
+/// triangles in one fixed order (color, chunk, triangle) whatever the thread count.
+struct ElementSchedule {
+    std::vector<std::array<TriId, 2>> chunk_tris;  ///< [begin, end) per chunk, sorted by color
+    std::vector<BodyId> chunk_body;                ///< body of each chunk
+    std::vector<int32_t> color_begin;  ///< chunks of color c: [color_begin[c], color_begin[c+1])
+    int32_t num_chunks() const { return static_cast<int32_t>(chunk_tris.size()); }
+};
+
 struct Model {
     // nodes (num_nodes())
     std::vector<Vec2> node_x0;         ///< reference position [m]
@@ -92,6 +103,7 @@ struct Model {
     Vec2 gravity;                      ///< [m/s^2]
 
     ContactModel contact;              ///< contact parameters and topology (contact_model.hpp)
+    ElementSchedule element_schedule;  ///< derived: parallel element loop (element/cst.hpp)
 
     int32_t num_nodes() const { return static_cast<int32_t>(node_x0.size()); }
     int32_t num_tris() const { return static_cast<int32_t>(tri_nodes.size()); }

@@ -38,6 +38,8 @@ struct State {
 
     Energy energy;
     std::vector<Vec2> scratch_bc_v;  ///< v^{n-1/2} of supported nodes (step() scratch)
+    /// per-chunk partial sums of step()'s reductions, combined in chunk order (determinism)
+    std::vector<Real> scratch_sums;
     int32_t next_kick = 0;  ///< index of the next VelocityKick to apply
 
     ContactState contact;  ///< pair history, candidate lists, scratch (contact_state.hpp)

@@ -1,56 +1,77 @@
 // Constant-strain triangle kernel (docs/theory.md §3). Reference: Munjiza 2004 §4.6, spec §3.1.
+//
+// Performance notes (docs/performance.md): the loop runs over chunks of contiguous triangles of
+// one body, so the material constants are hoisted out of it and fixed bodies never enter it;
+// the viscous branch is a template parameter decided per chunk. Chunks are colored so that a
+// color's chunks share no node and can scatter their forces concurrently without atomics, in an
+// order that does not depend on the thread count.
 #include "element/cst.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "material/hyperelastic.hpp"
 
 namespace fdem {
 
-ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin,
-                                TriId end) {
-    ElementPass out;
-    const auto* tri = m.tri_nodes.data();
-    const auto* dm_inv = m.tri_dm_inv.data();
-    const Real* area0 = m.tri_area0.data();
-    const Real* eta = m.tri_eta.data();
-    const int32_t* mat = m.tri_material.data();
-    const BodyId* body = m.tri_body.data();
+namespace {
+
+/// Triangles per chunk. Small enough that a 16k-triangle (cache-resident) mesh still gives two
+/// threads enough chunks per color, large enough that the per-chunk overhead is negligible.
+constexpr TriId kChunkTris = 256;
+
+/// Partial sums stored per chunk in State::scratch_sums.
+constexpr size_t kChunkSlots = 4;
+
+// Triangles [begin, end) of one body with Lame constants (lambda, mu). kViscous: some triangle
+// of the range has eta > 0 (theory eq. 2.4); otherwise the viscous code is compiled out.
+template <bool kViscous>
+void element_range(const Model& m, const Vec2* __restrict x, const Vec2* __restrict v,
+                   Vec2* __restrict f, TriId begin, TriId end, Real lambda, Real mu,
+                   ElementPass& out) {
+    const auto* __restrict tri = m.tri_nodes.data();
+    const Mat2* __restrict dm_inv = m.tri_dm_inv.data();
+    const Real* __restrict area0 = m.tri_area0.data();
+    const Real* __restrict eta = m.tri_eta.data();
+    Real energy = 0, power = 0;
+    Real min_j = out.min_jacobian;
+    TriId min_t = out.min_jacobian_tri;
 
     for (TriId t = begin; t < end; ++t) {
-        if (m.bodies[body[t]].fixed) continue;
         const auto [a, b, c] = tri[t];
-        const Material& mt = m.materials[mat[t]];
+        const Vec2 xa = x[a], xb = x[b], xc = x[c];
 
         // current edge matrix and deformation gradient (theory eq. 3.1)
-        const Vec2 e1 = x[b] - x[a];
-        const Vec2 e2 = x[c] - x[a];
-        const Mat2 Ds = columns(e1, e2);
+        const Mat2 Ds = columns(xb - xa, xc - xa);
         const Mat2 F = Ds * dm_inv[t];
         const Real J = det(F);
-        if (J < out.min_jacobian) {
-            out.min_jacobian = J;
-            out.min_jacobian_tri = t;
+        if (J < min_j) {
+            min_j = J;
+            min_t = t;
         }
         if (!(J > 0)) continue;  // inverted: reported by the caller, no force from a log of < 0
 
         // elastic Cauchy stress and strain energy (theory eqs. 2.1, 2.2)
-        Mat2 sigma = cauchy_stress(mt.lambda, mt.mu, F);
-        out.strain_energy += area0[t] * strain_energy_density(mt.lambda, mt.mu, F);
+        Mat2 sigma = cauchy_stress(lambda, mu, F);
+        energy += area0[t] * strain_energy_density(lambda, mu, F);
 
         // viscous stress eta D, D = sym(L), L = [v1-v0, v2-v0] Ds^-1 (theory eq. 2.4)
-        if (eta[t] > 0) {
-            const Mat2 L = columns(v[b] - v[a], v[c] - v[a]) * inverse(Ds);
-            const Real dxy = 0.5 * (L.xy + L.yx);
-            const Mat2 D = {L.xx, dxy, dxy, L.yy};
-            sigma = sigma + eta[t] * D;
-            out.viscous_power += J * area0[t] * eta[t] * ddot(D, D);
+        if constexpr (kViscous) {
+            if (eta[t] > 0) {
+                const Mat2 L = columns(v[b] - v[a], v[c] - v[a]) * inverse(Ds);
+                const Real dxy = 0.5 * (L.xy + L.yx);
+                const Mat2 D = {L.xx, dxy, dxy, L.yy};
+                sigma = sigma + eta[t] * D;
+                power += J * area0[t] * eta[t] * ddot(D, D);
+            }
         }
 
         // nodal forces f_i = 1/2 sigma n_i, n_i = outward scaled normal of the edge opposite
         // node i in the current configuration (theory eq. 3.3)
-        const Vec2 xa = x[a], xb = x[b], xc = x[c];
         const Vec2 na = {xc.y - xb.y, xb.x - xc.x};
         const Vec2 nb = {xa.y - xc.y, xc.x - xa.x};
         const Vec2 nc = {xb.y - xa.y, xa.x - xb.x};
@@ -58,7 +79,158 @@ ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Ve
         f[b] += 0.5 * (sigma * nb);
         f[c] += 0.5 * (sigma * nc);
     }
+    out.strain_energy += energy;
+    out.viscous_power += power;
+    out.min_jacobian = min_j;
+    out.min_jacobian_tri = min_t;
+}
+
+// Dispatch a range of triangles of one material on whether any of them is viscous.
+void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
+                    ElementPass& out) {
+    const Material& mt = m.materials[m.tri_material[begin]];
+    const bool viscous = std::any_of(m.tri_eta.begin() + begin, m.tri_eta.begin() + end,
+                                     [](Real e) { return e > 0; });
+    if (viscous) {
+        element_range<true>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
+    } else {
+        element_range<false>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
+    }
+}
+
+}  // namespace
+
+ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin,
+                                TriId end) {
+    ElementPass out;
+    for (BodyId b = 0; b < m.num_bodies(); ++b) {
+        const Body& body = m.bodies[b];
+        TriId lo = std::max(begin, body.tri_begin);
+        const TriId hi = std::min(end, body.tri_end);
+        if (body.fixed) continue;
+        // runs of one material (normally the whole body)
+        while (lo < hi) {
+            TriId run = lo + 1;
+            while (run < hi && m.tri_material[run] == m.tri_material[lo])
+                ++run;
+            material_range(m, x, v, f, lo, run, out);
+            lo = run;
+        }
+    }
     return out;
+}
+
+ElementPass add_internal_forces(const Model& m, State& s) {
+    const ElementSchedule& sc = m.element_schedule;
+    const int32_t nc = sc.num_chunks();
+    const int32_t ncolors = static_cast<int32_t>(sc.color_begin.size()) - 1;
+    if (s.scratch_sums.size() < kChunkSlots * static_cast<size_t>(nc)) {
+        s.scratch_sums.resize(kChunkSlots * static_cast<size_t>(nc));  // first call only
+    }
+    Real* part = s.scratch_sums.data();
+    const Vec2* x = s.x.data();
+    const Vec2* v = s.v.data();
+    Vec2* f = s.f.data();
+
+    // colors one after the other (implicit barrier at the end of each omp for); the chunks of a
+    // color touch disjoint nodes, so their scatter needs no atomics. Dynamic scheduling only
+    // changes which thread runs a chunk, never the order in which a node is updated.
+#pragma omp parallel if (nc > 1)
+    for (int32_t c = 0; c < ncolors; ++c) {
+#pragma omp for schedule(dynamic, 1)
+        for (int32_t k = sc.color_begin[c]; k < sc.color_begin[c + 1]; ++k) {
+            ElementPass p;
+            material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], p);
+            Real* slot = part + kChunkSlots * static_cast<size_t>(k);
+            slot[0] = p.strain_energy;
+            slot[1] = p.viscous_power;
+            slot[2] = p.min_jacobian;
+            slot[3] = static_cast<Real>(p.min_jacobian_tri);
+        }
+    }
+
+    // reduce in chunk order: the same sums whatever the thread count
+    ElementPass out;
+    for (int32_t k = 0; k < nc; ++k) {
+        const Real* slot = part + kChunkSlots * static_cast<size_t>(k);
+        out.strain_energy += slot[0];
+        out.viscous_power += slot[1];
+        if (slot[2] < out.min_jacobian) {
+            out.min_jacobian = slot[2];
+            out.min_jacobian_tri = static_cast<TriId>(slot[3]);
+        }
+    }
+    return out;
+}
+
+ElementSchedule build_element_schedule(const Model& m) {
+    // chunks: at most kChunkTris contiguous triangles of one material of one non-fixed body
+    std::vector<std::array<TriId, 2>> chunks;
+    std::vector<BodyId> chunk_body;
+    for (BodyId b = 0; b < m.num_bodies(); ++b) {
+        const Body& body = m.bodies[b];
+        if (body.fixed) continue;
+        TriId t = body.tri_begin;
+        while (t < body.tri_end) {
+            TriId e = t + 1;
+            while (e < body.tri_end && e - t < kChunkTris &&
+                   m.tri_material[e] == m.tri_material[t]) {
+                ++e;
+            }
+            chunks.push_back({t, e});
+            chunk_body.push_back(b);
+            t = e;
+        }
+    }
+
+    // greedy coloring in chunk order: node_colors[n] holds a bit per color of the chunks
+    // already colored that touch node n; a chunk takes the lowest color none of its nodes has
+    const size_t n_chunks = chunks.size();
+    std::vector<int32_t> color(n_chunks, 0);
+    std::vector<uint64_t> node_colors(static_cast<size_t>(m.num_nodes()), 0);
+    int32_t ncolors = 0;
+    bool overflow = false;
+    for (size_t k = 0; k < n_chunks && !overflow; ++k) {
+        uint64_t used = 0;
+        for (TriId t = chunks[k][0]; t < chunks[k][1]; ++t) {
+            for (NodeId n : m.tri_nodes[t])
+                used |= node_colors[static_cast<size_t>(n)];
+        }
+        if (used == ~uint64_t{0}) {
+            overflow = true;  // more than 64 colors: never seen in 2-D meshes
+            break;
+        }
+        const int c = std::countr_one(used);
+        color[k] = c;
+        ncolors = std::max(ncolors, c + 1);
+        for (TriId t = chunks[k][0]; t < chunks[k][1]; ++t) {
+            for (NodeId n : m.tri_nodes[t])
+                node_colors[static_cast<size_t>(n)] |= uint64_t{1} << c;
+        }
+    }
+    if (overflow) {
+        // still correct and deterministic, only serial: one chunk per color
+        for (size_t k = 0; k < n_chunks; ++k)
+            color[k] = static_cast<int32_t>(k);
+        ncolors = static_cast<int32_t>(n_chunks);
+    }
+
+    // order the chunks by (color, chunk index): counting sort
+    ElementSchedule sc;
+    sc.color_begin.assign(static_cast<size_t>(ncolors) + 1, 0);
+    for (size_t k = 0; k < n_chunks; ++k)
+        ++sc.color_begin[static_cast<size_t>(color[k]) + 1];
+    for (int32_t c = 0; c < ncolors; ++c)
+        sc.color_begin[c + 1] += sc.color_begin[c];
+    std::vector<int32_t> next(sc.color_begin.begin(), sc.color_begin.end() - 1);
+    sc.chunk_tris.resize(n_chunks);
+    sc.chunk_body.resize(n_chunks);
+    for (size_t k = 0; k < n_chunks; ++k) {
+        const int32_t slot = next[static_cast<size_t>(color[k])]++;
+        sc.chunk_tris[static_cast<size_t>(slot)] = chunks[k];
+        sc.chunk_body[static_cast<size_t>(slot)] = chunk_body[k];
+    }
+    return sc;
 }
 
 Real element_critical_dt(const Model& m, TriId t) {

@@ -10,17 +10,29 @@ namespace fdem {
 
 /// Result of one internal-force pass, reduced over all triangles.
 struct ElementPass {
-    Real strain_energy = 0;    ///< sum A0 W(F) at the current positions [J/m]
-    Real viscous_power = 0;    ///< sum A eta D:D [W/m], >= 0
+    Real strain_energy = 0;  ///< sum A0 W(F) at the current positions [J/m]
+    Real viscous_power = 0;  ///< sum A eta D:D [W/m], >= 0
     Real min_jacobian = std::numeric_limits<Real>::infinity();  ///< smallest det F seen
     TriId min_jacobian_tri = kNone;
 };
 
-/// Add internal forces f_i = 1/2 sigma n_i (theory eq. 3.3) of triangles [begin, end) to f.
-/// sigma includes the viscous part eta D (theory eq. 2.4) from velocities v. Triangles of
-/// fixed bodies are skipped (they never move).
-ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Vec2* f,
-                                TriId begin, TriId end);
+/// Add internal forces f_i = 1/2 sigma n_i (theory eq. 3.3) of triangles [begin, end) to f,
+/// serially in triangle order. sigma includes the viscous part eta D (theory eq. 2.4) from
+/// velocities v. Triangles of fixed bodies are skipped (they never move).
+ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin,
+                                TriId end);
+
+/// Internal forces of every non-fixed triangle added to s.f (positions s.x, velocities s.v), in
+/// parallel over m.element_schedule. Bitwise identical for every OpenMP thread count: each node
+/// receives its triangles' forces in the schedule's fixed order, and the energies are summed per
+/// chunk and then over chunks in chunk order (docs/performance.md). Uses s.scratch_sums (sized on
+/// first use, so it allocates only once).
+ElementPass add_internal_forces(const Model& m, State& s);
+
+/// Cut the triangles of the non-fixed bodies into chunks and color them so that chunks of one
+/// color share no node (greedy, in chunk order). Depends only on the model, never on the thread
+/// count. Called by finalize_model().
+ElementSchedule build_element_schedule(const Model& m);
 
 /// Deformation gradient F = Ds Dm^-1 of triangle t (theory eq. 3.1).
 inline Mat2 deformation_gradient(const Model& m, const Vec2* x, TriId t) {

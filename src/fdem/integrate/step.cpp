@@ -7,6 +7,11 @@
 //   6. central difference: v^{n+1/2} = v^{n-1/2} + dt f/m; prescribed components overwrite v
 //   7. energy accounting at t^n; x^{n+1} = x^n + dt v^{n+1/2}
 //   8. failure checks (inverted element from step 3, NaN)
+//
+// Parallel loops (OpenMP) are bitwise deterministic: per-node work is independent, and every
+// reduction is summed per fixed block of nodes (kNodeBlock, independent of the thread count) and
+// then over the blocks in block order (docs/performance.md).
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -17,6 +22,17 @@
 #include "fdem/simulate.hpp"
 
 namespace fdem {
+
+namespace {
+
+/// Nodes per reduction block of the node update. Fixed, so the partial sums do not depend on
+/// the number of threads.
+constexpr NodeId kNodeBlock = 2048;
+
+/// Partial sums per node block in State::scratch_sums: kinetic2, gravity work, damping power.
+constexpr size_t kNodeSlots = 3;
+
+}  // namespace
 
 State make_state(const Model& m, Real dt) {
     State s;
@@ -30,8 +46,14 @@ State make_state(const Model& m, Real dt) {
     s.f.assign(m.node_x0.size(), Vec2{});
     s.f_contact.assign(m.node_x0.size(), Vec2{});
     size_t n_bc = 0;
-    for (const BoundaryCondition& bc : m.bcs) n_bc += bc.nodes.size();
+    for (const BoundaryCondition& bc : m.bcs)
+        n_bc += bc.nodes.size();
     s.scratch_bc_v.assign(n_bc, Vec2{});
+    // partial sums: 4 per element chunk (element/cst.cpp), 3 per node block (below)
+    const size_t n_blocks = (m.node_x0.size() + kNodeBlock - 1) / kNodeBlock;
+    s.scratch_sums.assign(
+        std::max(4 * static_cast<size_t>(m.element_schedule.num_chunks()), kNodeSlots * n_blocks),
+        0.0);
     init_contact_state(m, s);
     return s;
 }
@@ -70,13 +92,15 @@ void step(const Model& m, State& s) {
     apply_kicks(m, s);
 
     // 2. clear forces
+    Vec2* fc = s.f_contact.data();
+#pragma omp parallel for schedule(static) if (nn > kNodeBlock)
     for (NodeId i = 0; i < nn; ++i) {
         f[i] = {};
-        s.f_contact[i] = {};
+        fc[i] = {};
     }
 
-    // 3. internal forces
-    const ElementPass pass = add_internal_forces(m, x, v, f, 0, m.num_tris());
+    // 3. internal forces (parallel over the element schedule, deterministic)
+    const ElementPass pass = add_internal_forces(m, s);
     if (pass.min_jacobian_tri != kNone && !(pass.min_jacobian > 0)) {
         const TriId t = pass.min_jacobian_tri;
         throw SimulationError(
@@ -93,7 +117,8 @@ void step(const Model& m, State& s) {
     {
         size_t k = 0;
         for (const BoundaryCondition& bc : m.bcs) {
-            for (NodeId i : bc.nodes) s.scratch_bc_v[k++] = v[i];
+            for (NodeId i : bc.nodes)
+                s.scratch_bc_v[k++] = v[i];
         }
     }
 
@@ -101,25 +126,49 @@ void step(const Model& m, State& s) {
     const bool mass_damped = s.time < m.mass_damping.until && m.mass_damping.coefficient > 0;
     const Real c = m.mass_damping.coefficient;
     const Vec2 g = m.gravity;
-    Real kinetic2 = 0, gravity_work = 0, damping_power = 0;
     // the first step starts from v^0 and advances half a step to v^{1/2} (theory eq. 5.1), so a
     // constant acceleration is integrated exactly: x^n = x^0 + v^0 t + a t^2 / 2
     const bool first = s.step == 0;
     const Real dt_v = first ? 0.5 * dt : dt;
-    for (NodeId i = 0; i < nn; ++i) {
-        const Real inv = m.node_inv_mass[i];
-        if (inv == 0) continue;  // nodes of fixed bodies
-        const Real mi = m.node_mass[i];
-        const Vec2 v_old = v[i];
-        Vec2 fi = f[i] + mi * g;
-        if (mass_damped) fi -= (c * mi) * v_old;
-        const Vec2 v_new = v_old + (dt_v * inv) * fi;
-        const Vec2 vn = first ? v_old : 0.5 * (v_old + v_new);  // v^n (theory eq. 5.2)
-        kinetic2 += mi * norm2(vn);
-        // work of gravity up to x^n: the exact potential change (theory eq. 4.2)
-        gravity_work += mi * dot(g, x[i] - m.node_x0[i]);
-        if (mass_damped) damping_power += c * mi * dot(v_old, vn);
-        v[i] = v_new;
+    const NodeId n_blocks = (nn + kNodeBlock - 1) / kNodeBlock;
+    if (s.scratch_sums.size() < kNodeSlots * static_cast<size_t>(n_blocks)) {
+        s.scratch_sums.resize(kNodeSlots * static_cast<size_t>(n_blocks));  // first call only
+    }
+    Real* part = s.scratch_sums.data();
+    const Real* mass = m.node_mass.data();
+    const Real* inv_mass = m.node_inv_mass.data();
+    const Vec2* x0 = m.node_x0.data();
+#pragma omp parallel for schedule(static) if (n_blocks > 1)
+    for (NodeId blk = 0; blk < n_blocks; ++blk) {
+        Real kin = 0, grav = 0, damp = 0;
+        const NodeId end = std::min(nn, (blk + 1) * kNodeBlock);
+        for (NodeId i = blk * kNodeBlock; i < end; ++i) {
+            const Real inv = inv_mass[i];
+            if (inv == 0) continue;  // nodes of fixed bodies
+            const Real mi = mass[i];
+            const Vec2 v_old = v[i];
+            Vec2 fi = f[i] + mi * g;
+            if (mass_damped) fi -= (c * mi) * v_old;
+            const Vec2 v_new = v_old + (dt_v * inv) * fi;
+            const Vec2 vn = first ? v_old : 0.5 * (v_old + v_new);  // v^n (theory eq. 5.2)
+            kin += mi * norm2(vn);
+            // work of gravity up to x^n: the exact potential change (theory eq. 4.2)
+            grav += mi * dot(g, x[i] - x0[i]);
+            if (mass_damped) damp += c * mi * dot(v_old, vn);
+            v[i] = v_new;
+        }
+        Real* slot = part + kNodeSlots * static_cast<size_t>(blk);
+        slot[0] = kin;
+        slot[1] = grav;
+        slot[2] = damp;
+    }
+    // reduce in block order: the same sums whatever the thread count
+    Real kinetic2 = 0, gravity_work = 0, damping_power = 0;
+    for (NodeId blk = 0; blk < n_blocks; ++blk) {
+        const Real* slot = part + kNodeSlots * static_cast<size_t>(blk);
+        kinetic2 += slot[0];
+        gravity_work += slot[1];
+        damping_power += slot[2];
     }
 
     // prescribed velocity components overwrite v^{n+1/2}; the support reaction
@@ -149,8 +198,9 @@ void step(const Model& m, State& s) {
     }
 
     // x^{n+1} = x^n + dt v^{n+1/2}
+#pragma omp parallel for schedule(static) if (nn > kNodeBlock)
     for (NodeId i = 0; i < nn; ++i) {
-        if (m.node_inv_mass[i] == 0) continue;
+        if (inv_mass[i] == 0) continue;
         x[i] += dt * v[i];
     }
 

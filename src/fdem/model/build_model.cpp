@@ -11,6 +11,7 @@
 #include "element/cst.hpp"
 #include "fdem/build.hpp"
 #include "fdem/error.hpp"
+#include "model/renumber.hpp"
 
 namespace fdem {
 
@@ -131,6 +132,7 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
 
 void finalize_model(Model& m) {
     for (Material& mat : m.materials) compute_lame(mat);
+    renumber_spatially(m);  // first: everything below is derived from the final numbering
 
     const size_t nn = static_cast<size_t>(m.num_nodes());
     const size_t nt = static_cast<size_t>(m.num_tris());
@@ -165,6 +167,7 @@ void finalize_model(Model& m) {
                      [](const VelocityKick& a, const VelocityKick& b) { return a.time < b.time; });
 
     build_contact_topology(m);
+    m.element_schedule = build_element_schedule(m);
 }
 
 Real stable_time_step(const Model& m, TriId* limiting_tri) {

@@ -1,0 +1,40 @@
+// Helpers shared by the benchmarks: cached scenes (building a 4M-triangle model takes seconds) and
+// the OpenMP thread count taken from a benchmark argument.
+#pragma once
+
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <map>
+#include <memory>
+#include <tuple>
+
+#include "support/scenes.hpp"
+
+namespace fdem::bench {
+
+/// The block scene for (triangles, gravity+clamp, shuffled), built once per process.
+inline const Model& cached_block(int64_t num_tris, bool loaded, bool shuffled) {
+    static std::map<std::tuple<int64_t, bool, bool>, std::unique_ptr<Model>> cache;
+    auto& slot = cache[{num_tris, loaded, shuffled}];
+    if (!slot) {
+        scenes::BlockOptions o;
+        o.num_tris = num_tris;
+        o.gravity = o.clamp = loaded;
+        o.shuffled = shuffled;
+        // keep at most one big model alive: the 4M case alone is ~0.5 GB
+        if (num_tris >= (1 << 20)) cache.clear();
+        auto& fresh = cache[{num_tris, loaded, shuffled}];
+        fresh = std::make_unique<Model>(scenes::make_block(o));
+        return *fresh;
+    }
+    return *slot;
+}
+
+/// Triangle counts 1k ... 4M (x4).
+inline void tri_sizes(benchmark::internal::Benchmark* b, int threads) {
+    for (int64_t n = 1 << 10; n <= (1 << 22); n *= 4)
+        b->Args({n, threads});
+}
+
+}  // namespace fdem::bench
