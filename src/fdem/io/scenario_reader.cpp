@@ -1,6 +1,693 @@
+// Scenario files (TOML, docs/scenario.md): parse, validate every key with its source location,
+// read the meshes, build the Model and choose the time step.
+//
+// Order of work: TOML syntax -> [simulation] -> [output] -> [[material]] -> [[body]] (meshes
+// read once per file and size) -> [[boundary]] -> [[kick]] -> [damping] -> [contact] ->
+// finalize_model() -> stable dt check. Every problem is an InputError at the key concerned.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "fdem/build.hpp"
+#include "fdem/error.hpp"
+#include "fdem/mesh.hpp"
 #include "fdem/scenario.hpp"
-#include <stdexcept>
+#include "io/toml_fields.hpp"
+
 namespace fdem {
-Scenario load_scenario(const std::string&) { throw std::logic_error("todo"); }
-Scenario load_scenario_from_string(const std::string&, const std::string&, const std::string&) { throw std::logic_error("todo"); }
+
+namespace {
+
+using io::Bounds;
+using io::Fields;
+using io::SourceText;
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kTopKeys = {"simulation", "output", "material", "body",
+                                           "boundary",   "kick",   "damping",  "contact"};
+const std::vector<std::string> kContactLawKeys = {"penalty",  "alpha",
+                                                  "beta",     "length_scale",
+                                                  "damping",  "damp_normal_only",
+                                                  "friction", "tangential_penalty",
+                                                  "unloading"};
+
+/// Optional sub-table: nullptr when absent; error when the key holds something else.
+const toml::table* sub_table(const SourceText& src, const toml::table& root, const char* key) {
+    const toml::node* n = root.get(key);
+    if (!n) {
+        return nullptr;
+    }
+    if (!n->is_table()) {
+        io::fail_at(src, *n, key,
+                    fmt::format("'{}' must be a table (write [{}] on its own line), got {} {}", key,
+                                key, io::describe_type(*n), io::describe_value(*n)));
+    }
+    return n->as_table();
 }
+
+/// Array of tables ([[key]]); empty when absent.
+std::vector<const toml::table*> table_array(const SourceText& src, const toml::table& parent,
+                                            const char* key, const std::string& shown) {
+    std::vector<const toml::table*> out;
+    const toml::node* n = parent.get(key);
+    if (!n) {
+        return out;
+    }
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables()) {
+        io::fail_at(src, *n, key,
+                    fmt::format("'{}' must be an array of tables: write [[{}]] once per entry, "
+                                "got {}",
+                                shown, shown, io::describe_type(*n)));
+    }
+    for (const toml::node& e : *a) {
+        out.push_back(e.as_table());
+    }
+    return out;
+}
+
+/// Scenario-relative path as shown in messages.
+std::string resolve(const std::string& base_dir, const std::string& rel) {
+    fs::path p(rel);
+    if (p.is_relative() && !base_dir.empty() && base_dir != ".") {
+        p = fs::path(base_dir) / p;
+    }
+    return p.lexically_normal().string();
+}
+
+/// Largest "nice" value <= v with 3 significant digits (for "use dt <= ...").
+Real round_down_3(Real v) {
+    if (!(v > 0) || !std::isfinite(v)) {
+        return v;
+    }
+    const Real scale = std::pow(10.0, std::floor(std::log10(v)) - 2);
+    Real r = std::floor(v / scale) * scale;
+    while (r > v) {
+        r -= scale;  // guard against the division rounding up
+    }
+    return r;
+}
+
+struct BodyEntry {
+    std::string name;
+    const toml::table* table = nullptr;
+    int mesh = 0;                  ///< index into the mesh cache
+    std::vector<NodeId> node_map;  ///< mesh node -> model node (kNone if not in this body)
+};
+
+struct LoadedMesh {
+    std::string path;
+    Real size = 0;
+    MeshData data;
+    std::vector<int> tri_owner;  ///< body entry using each triangle, -1 if none
+};
+
+std::string group_kind(int dim) {
+    return dim == 0 ? "point" : dim == 1 ? "curve" : "surface";
+}
+
+std::string available_groups(const MeshData& mesh) {
+    std::vector<std::string> names;
+    for (const PhysicalGroup& g : mesh.groups) {
+        if (!g.name.empty()) {
+            names.push_back(fmt::format("\"{}\" ({})", g.name, group_kind(g.dim)));
+        }
+    }
+    if (names.empty()) {
+        return "the mesh has no named physical groups";
+    }
+    std::string out = "available: ";
+    for (size_t i = 0; i < names.size(); ++i) {
+        out += (i ? ", " : "") + names[i];
+    }
+    return out;
+}
+
+std::vector<std::string> group_names(const MeshData& mesh) {
+    std::vector<std::string> out;
+    for (const PhysicalGroup& g : mesh.groups) {
+        if (!g.name.empty()) {
+            out.push_back(g.name);
+        }
+    }
+    return out;
+}
+
+class ScenarioReader {
+public:
+    ScenarioReader(const SourceText& src, std::string base_dir)
+        : src_(src), base_dir_(std::move(base_dir)) {}
+
+    Scenario read(const toml::table& root) {
+        Scenario sc;
+        sc.path = src_.name;
+        Fields top(src_, root, "scenario", "", kTopKeys);
+
+        read_simulation(top, sc);
+        read_output(root, sc);
+        read_materials(root, sc.model);
+        read_bodies(root, sc.model);
+        read_boundaries(root, sc.model);
+        read_kicks(root, sc.model);
+        read_damping(root, sc.model);
+        read_contact(root, sc.model);
+
+        // derived data (the model builder's own checks keep their messages)
+        try {
+            finalize_model(sc.model);
+        } catch (const InputError& e) {
+            if (!e.location().file.empty()) {
+                throw;
+            }
+            throw InputError({src_.name, 0, 0}, e.key(), e.message());
+        }
+        choose_dt(sc);
+        return sc;
+    }
+
+private:
+    // ---- [simulation] ----------------------------------------------------------------------
+    void read_simulation(const Fields& top, Scenario& sc) {
+        const toml::table* t = sub_table(src_, top.table(), "simulation");
+        if (!t) {
+            throw InputError({src_.name, 0, 0}, "simulation",
+                             "missing required table [simulation] (end_time, dt)");
+        }
+        Fields f(src_, *t, "[simulation]", "simulation",
+                 {"end_time", "dt", "dt_fraction", "gravity"});
+        RunSettings& run = sc.run;
+        run.end_time = f.real("end_time", std::nullopt, "s", Bounds::positive());
+
+        // dt: a positive number or "auto"
+        const toml::node* dt = f.node("dt");
+        if (!dt) {
+            f.fail_missing("dt", "time step in s, > 0, or \"auto\"");
+        }
+        dt_loc_ = f.location("dt");
+        if (const auto s = dt->value<std::string>()) {
+            if (*s != "auto") {
+                f.fail(*dt, "dt",
+                       fmt::format("dt must be a number in s (> 0) or \"auto\", got \"{}\"", *s));
+            }
+            run.dt_auto = true;
+        } else {
+            run.dt = f.real("dt", std::nullopt, "s", Bounds::positive());
+        }
+        if (f.has("dt_fraction") && !run.dt_auto) {
+            f.fail(*f.node("dt_fraction"), "dt_fraction",
+                   "dt_fraction only applies with dt = \"auto\"; remove it or set dt = \"auto\"");
+        }
+        run.dt_fraction = f.real("dt_fraction", 0.5, "", {0.0, 1.0, true, false});
+        sc.model.gravity = f.vec2("gravity", Vec2{0, 0}, "m/s^2");
+    }
+
+    // ---- [output] --------------------------------------------------------------------------
+    void read_output(const toml::table& root, Scenario& sc) {
+        const toml::table* t = sub_table(src_, root, "output");
+        if (!t) {
+            return;
+        }
+        Fields f(src_, *t, "[output]", "output", {"interval", "dir", "vtu"});
+        OutputSettings& o = sc.run.output;
+        o.interval = f.real("interval", 0.0, "s", Bounds::positive());
+        o.dir = f.string("dir", std::string("out"));
+        o.vtu = f.boolean("vtu", true);
+    }
+
+    // ---- [[material]] ----------------------------------------------------------------------
+    void read_materials(const toml::table& root, Model& m) {
+        const auto tables = table_array(src_, root, "material", "material");
+        if (tables.empty()) {
+            throw InputError({src_.name, 0, 0}, "material",
+                             "no [[material]] defined; every body needs a material");
+        }
+        std::map<std::string, int> first_line;
+        for (size_t i = 0; i < tables.size(); ++i) {
+            Fields f(src_, *tables[i], fmt::format("[[material]] #{}", i + 1),
+                     fmt::format("material[{}]", i),
+                     {"name", "density", "youngs_modulus", "poisson_ratio", "plane", "viscosity",
+                      "damping_ratio"});
+            Material mat;
+            mat.name = f.string("name", std::nullopt);
+            f.set_context(fmt::format("material \"{}\"", mat.name));
+            if (const auto it = first_line.find(mat.name); it != first_line.end()) {
+                f.fail(*f.node("name"), "name",
+                       fmt::format("duplicate material name \"{}\" (first defined on line {})",
+                                   mat.name, it->second));
+            }
+            first_line[mat.name] = f.location("name").line;
+            mat.density = f.real("density", std::nullopt, "kg/m^3", Bounds::positive());
+            mat.youngs_modulus = f.real("youngs_modulus", std::nullopt, "Pa", Bounds::positive());
+            mat.poisson_ratio = f.real("poisson_ratio", std::nullopt, "", {0.0, 0.5, false, true});
+            mat.plane = f.choice("plane", std::string("strain"), {"strain", "stress"}) == "strain"
+                            ? PlaneMode::Strain
+                            : PlaneMode::Stress;
+            mat.viscosity = f.real("viscosity", 0.0, "Pa s", Bounds::non_negative());
+            mat.damping_ratio = f.real("damping_ratio", 0.0, "", Bounds::non_negative());
+            compute_lame(mat);
+            material_names_.push_back(mat.name);
+            m.materials.push_back(mat);
+        }
+    }
+
+    int material_index(const Fields& f, std::string_view key) const {
+        const std::string name = f.string(key, std::nullopt);
+        const auto it = std::find(material_names_.begin(), material_names_.end(), name);
+        if (it == material_names_.end()) {
+            const std::string guess = io::closest(name, material_names_);
+            f.fail(*f.node(key), key,
+                   fmt::format("unknown material \"{}\"; defined materials: {}{}", name,
+                               io::quoted_list(material_names_),
+                               guess.empty() ? "" : fmt::format("; did you mean \"{}\"?", guess)));
+        }
+        return static_cast<int>(it - material_names_.begin());
+    }
+
+    // ---- [[body]] --------------------------------------------------------------------------
+    int load_mesh(const Fields& f) {
+        const std::string rel = f.string("mesh", std::nullopt);
+        const std::string path = resolve(base_dir_, rel);
+        const std::string ext = fs::path(path).extension().string();
+        if (ext != ".msh" && ext != ".geo") {
+            f.fail(*f.node("mesh"), "mesh",
+                   fmt::format("mesh must be a Gmsh .msh or .geo file, got \"{}\"", rel));
+        }
+        Real size = 0;
+        if (ext == ".geo") {
+            size = f.real("mesh_size", std::nullopt, "m", Bounds::positive());
+        } else if (f.has("mesh_size")) {
+            f.fail(*f.node("mesh_size"), "mesh_size",
+                   "mesh_size only applies to .geo files (a .msh file is already meshed)");
+        }
+        std::error_code ec;
+        if (!fs::exists(path, ec)) {
+            f.fail(*f.node("mesh"), "mesh",
+                   fmt::format("cannot open mesh file '{}': No such file", path));
+        }
+        for (size_t i = 0; i < meshes_.size(); ++i) {
+            if (meshes_[i].path == path && meshes_[i].size == size) {
+                return static_cast<int>(i);
+            }
+        }
+        LoadedMesh lm;
+        lm.path = path;
+        lm.size = size;
+        lm.data = read_mesh(path, size);
+        lm.tri_owner.assign(lm.data.tris.size(), -1);
+        meshes_.push_back(std::move(lm));
+        return static_cast<int>(meshes_.size() - 1);
+    }
+
+    void read_bodies(const toml::table& root, Model& m) {
+        const auto tables = table_array(src_, root, "body", "body");
+        if (tables.empty()) {
+            throw InputError({src_.name, 0, 0}, "body", "no [[body]] defined");
+        }
+        for (size_t i = 0; i < tables.size(); ++i) {
+            Fields f(src_, *tables[i], fmt::format("[[body]] #{}", i + 1),
+                     fmt::format("body[{}]", i),
+                     {"name", "mesh", "mesh_size", "group", "material", "velocity", "fixed"});
+            BodyEntry entry;
+            entry.name = f.string("name", std::nullopt);
+            entry.table = tables[i];
+            f.set_context(fmt::format("body \"{}\"", entry.name));
+            for (const BodyEntry& other : bodies_) {
+                if (other.name == entry.name) {
+                    f.fail(*f.node("name"), "name",
+                           fmt::format("duplicate body name \"{}\" (first defined on line {})",
+                                       entry.name, other.table->get("name")->source().begin.line));
+                }
+            }
+            BodyOptions opt;
+            opt.name = entry.name;
+            opt.material = material_index(f, "material");
+            opt.velocity = f.vec2("velocity", Vec2{0, 0}, "m/s");
+            opt.fixed = f.boolean("fixed", false);
+            entry.mesh = load_mesh(f);
+            LoadedMesh& lm = meshes_[static_cast<size_t>(entry.mesh)];
+
+            // triangles: all of the mesh, or those of one surface physical group
+            std::vector<int32_t> tris;
+            if (f.has("group")) {
+                const std::string g = f.string("group", std::nullopt);
+                const PhysicalGroup* pg = nullptr;
+                for (const PhysicalGroup& cand : lm.data.groups) {
+                    if (cand.name == g && cand.dim == 2) {
+                        pg = &cand;
+                    }
+                }
+                if (!pg) {
+                    const std::string guess = io::closest(g, group_names(lm.data));
+                    f.fail(*f.node("group"), "group",
+                           fmt::format(
+                               "mesh '{}' has no surface physical group \"{}\"{}; {}", lm.path, g,
+                               guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
+                               available_groups(lm.data)));
+                }
+                tris = pg->elements;
+                if (tris.empty()) {
+                    f.fail(*f.node("group"), "group",
+                           fmt::format("physical group \"{}\" of mesh '{}' contains no triangles",
+                                       g, lm.path));
+                }
+            } else {
+                tris.resize(lm.data.tris.size());
+                for (size_t t = 0; t < tris.size(); ++t) {
+                    tris[t] = static_cast<int32_t>(t);
+                }
+            }
+            for (const int32_t t : tris) {
+                const int owner = lm.tri_owner[static_cast<size_t>(t)];
+                if (owner >= 0) {
+                    f.fail(f.has("group") ? *f.node("group") : *f.node("mesh"), "group",
+                           fmt::format("triangles of mesh '{}' are already used by body \"{}\"; "
+                                       "select disjoint physical groups with 'group'",
+                                       lm.path, bodies_[static_cast<size_t>(owner)].name));
+                }
+            }
+            for (const int32_t t : tris) {
+                lm.tri_owner[static_cast<size_t>(t)] = static_cast<int>(i);
+            }
+            entry.node_map = add_bodies(m, lm.data, tris, opt);
+            bodies_.push_back(std::move(entry));
+        }
+    }
+
+    int body_index(const Fields& f, std::string_view key) const {
+        const std::string name = f.string(key, std::nullopt);
+        std::vector<std::string> names;
+        for (size_t i = 0; i < bodies_.size(); ++i) {
+            if (bodies_[i].name == name) {
+                return static_cast<int>(i);
+            }
+            names.push_back(bodies_[i].name);
+        }
+        const std::string guess = io::closest(name, names);
+        f.fail(
+            *f.node(key), key,
+            fmt::format("unknown body \"{}\"; defined bodies: {}{}", name, io::quoted_list(names),
+                        guess.empty() ? "" : fmt::format("; did you mean \"{}\"?", guess)));
+    }
+
+    // ---- [[boundary]] ----------------------------------------------------------------------
+    void read_boundaries(const toml::table& root, Model& m) {
+        const auto tables = table_array(src_, root, "boundary", "boundary");
+        for (size_t i = 0; i < tables.size(); ++i) {
+            Fields f(src_, *tables[i], fmt::format("[[boundary]] #{}", i + 1),
+                     fmt::format("boundary[{}]", i),
+                     {"body", "group", "fix", "velocity", "components", "start", "end"});
+            const int b = body_index(f, "body");
+            const BodyEntry& entry = bodies_[static_cast<size_t>(b)];
+            const MeshData& mesh = meshes_[static_cast<size_t>(entry.mesh)].data;
+            const std::string group = f.string("group", std::nullopt);
+            f.set_context(fmt::format("boundary \"{}\" of body \"{}\"", group, entry.name));
+
+            BoundaryCondition bc;
+            bc.name = entry.name + "/" + group;
+
+            // what is prescribed: fix = [...] or velocity = [vx, vy] (+ components)
+            if (f.has("fix") == f.has("velocity")) {
+                f.fail_table(
+                    "give exactly one of 'fix' (components held at zero velocity) or "
+                    "'velocity' (prescribed velocity [vx, vy] in m/s)");
+            }
+            if (f.has("fix")) {
+                if (f.has("components")) {
+                    f.fail(*f.node("components"), "components",
+                           "'components' goes with 'velocity'; with 'fix' list the components "
+                           "in 'fix' itself");
+                }
+                f.components("fix", std::nullopt, bc.has_x, bc.has_y);
+            } else {
+                bc.velocity = f.vec2("velocity", std::nullopt, "m/s");
+                f.components("components", std::pair{true, true}, bc.has_x, bc.has_y);
+            }
+            bc.start = f.real("start", 0.0, "s", Bounds::non_negative());
+            bc.end =
+                f.real("end", std::numeric_limits<Real>::infinity(), "s", Bounds::non_negative());
+            if (f.has("end") && !(bc.end > bc.start)) {
+                f.fail(*f.node("end"), "end",
+                       fmt::format("end must be > start = {} s, got {}", bc.start, bc.end));
+            }
+
+            // nodes: every group of that name (point, curve or surface), mapped to the body
+            std::vector<int32_t> mesh_nodes;
+            bool found = false;
+            for (const PhysicalGroup& g : mesh.groups) {
+                if (g.name == group) {
+                    found = true;
+                    const auto n = mesh.group_nodes(g);
+                    mesh_nodes.insert(mesh_nodes.end(), n.begin(), n.end());
+                }
+            }
+            if (!found) {
+                const std::string guess = io::closest(group, group_names(mesh));
+                f.fail(
+                    *f.node("group"), "group",
+                    fmt::format("mesh '{}' has no physical group \"{}\"{}; {}", mesh.file, group,
+                                guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
+                                available_groups(mesh)));
+            }
+            for (const int32_t n : mesh_nodes) {
+                const NodeId id = entry.node_map[static_cast<size_t>(n)];
+                if (id != kNone) {
+                    bc.nodes.push_back(id);
+                }
+            }
+            std::sort(bc.nodes.begin(), bc.nodes.end());
+            bc.nodes.erase(std::unique(bc.nodes.begin(), bc.nodes.end()), bc.nodes.end());
+            if (bc.nodes.empty()) {
+                f.fail(*f.node("group"), "group",
+                       fmt::format("physical group \"{}\" selects none of the nodes of body "
+                                   "\"{}\" (it lies on another part of mesh '{}')",
+                                   group, entry.name, mesh.file));
+            }
+            m.bcs.push_back(std::move(bc));
+        }
+    }
+
+    // ---- [[kick]] --------------------------------------------------------------------------
+    void read_kicks(const toml::table& root, Model& m) {
+        const auto tables = table_array(src_, root, "kick", "kick");
+        for (size_t i = 0; i < tables.size(); ++i) {
+            Fields f(src_, *tables[i], fmt::format("[[kick]] #{}", i + 1),
+                     fmt::format("kick[{}]", i), {"body", "time", "velocity", "components"});
+            VelocityKick k;
+            k.group = body_index(f, "body");
+            f.set_context(
+                fmt::format("kick of body \"{}\"", bodies_[static_cast<size_t>(k.group)].name));
+            k.time = f.real("time", std::nullopt, "s", Bounds::non_negative());
+            k.velocity = f.vec2("velocity", std::nullopt, "m/s");
+            f.components("components", std::pair{true, true}, k.has_x, k.has_y);
+            m.kicks.push_back(k);
+        }
+    }
+
+    // ---- [damping] -------------------------------------------------------------------------
+    void read_damping(const toml::table& root, Model& m) {
+        const toml::table* t = sub_table(src_, root, "damping");
+        if (!t) {
+            return;
+        }
+        Fields f(src_, *t, "[damping]", "damping", {"mass_proportional", "until"});
+        m.mass_damping.coefficient =
+            f.real("mass_proportional", std::nullopt, "1/s", Bounds::non_negative());
+        m.mass_damping.until = f.real("until", std::nullopt, "s", Bounds::non_negative());
+    }
+
+    // ---- [contact] -------------------------------------------------------------------------
+    /// Law keys of [contact] or of a [[contact.pair]], on top of base.
+    ContactParams read_law(const Fields& f, ContactParams p) const {
+        if (f.has("penalty")) {
+            p.penalty = f.real("penalty", std::nullopt, "Pa", Bounds::positive());
+        }
+        p.alpha = f.real("alpha", p.alpha, "", Bounds::at_least(1.0));
+        p.beta = f.real("beta", p.beta, "", Bounds::at_least(1.0));
+        if (p.beta < p.alpha) {
+            const char* key = f.has("beta") ? "beta" : "alpha";
+            f.fail(*f.node(key), key,
+                   fmt::format("beta must be >= alpha (unloading at least as stiff as "
+                               "loading), got alpha = {}, beta = {}",
+                               p.alpha, p.beta));
+        }
+        p.length_scale = f.real("length_scale", p.length_scale, "m", Bounds::positive());
+        p.damping = f.real("damping", p.damping, "N s/m^2", Bounds::non_negative());
+        p.damp_normal_only = f.boolean("damp_normal_only", p.damp_normal_only);
+        p.friction = f.real("friction", p.friction, "", Bounds::non_negative());
+        if (f.has("tangential_penalty")) {
+            p.tangential_penalty =
+                f.real("tangential_penalty", std::nullopt, "Pa", Bounds::positive());
+        }
+        if (f.has("unloading")) {
+            p.unloading =
+                f.choice("unloading", std::nullopt, {"continuous", "literal"}) == "continuous"
+                    ? UnloadingLaw::Continuous
+                    : UnloadingLaw::Literal;
+        }
+        return p;
+    }
+
+    void read_contact(const toml::table& root, Model& m) {
+        const toml::table* t = sub_table(src_, root, "contact");
+        if (!t) {
+            m.contact.algorithm = ContactAlgorithm::None;
+            return;
+        }
+        std::vector<std::string> keys = {"algorithm", "buffer", "two_way", "pair"};
+        keys.insert(keys.end(), kContactLawKeys.begin(), kContactLawKeys.end());
+        Fields f(src_, *t, "[contact]", "contact", keys);
+        ContactModel& c = m.contact;
+        const std::string alg = f.choice("algorithm", std::nullopt,
+                                         {"none", "smooth", "legacy-triangle", "legacy-boundary"});
+        c.algorithm = alg == "none"              ? ContactAlgorithm::None
+                      : alg == "smooth"          ? ContactAlgorithm::Smooth
+                      : alg == "legacy-triangle" ? ContactAlgorithm::LegacyTriangle
+                                                 : ContactAlgorithm::LegacyBoundary;
+        c.params = read_law(f, ContactParams{});
+        if (f.has("buffer")) {
+            c.buffer = f.real("buffer", std::nullopt, "m", Bounds::positive());
+        }
+        c.two_way = f.boolean("two_way", true);
+
+        // per material pair overrides
+        const auto pairs = table_array(src_, *t, "pair", "contact.pair");
+        if (pairs.empty()) {
+            return;
+        }
+        const size_t nm = m.materials.size();
+        c.pair_params.assign(nm * nm, c.params);
+        std::vector<int> set_by(nm * nm, 0);  // line of the pair entry that set each pair
+        std::vector<std::string> pair_keys = {"materials"};
+        pair_keys.insert(pair_keys.end(), kContactLawKeys.begin(), kContactLawKeys.end());
+        for (size_t i = 0; i < pairs.size(); ++i) {
+            Fields p(src_, *pairs[i], fmt::format("[[contact.pair]] #{}", i + 1),
+                     fmt::format("contact.pair[{}]", i), pair_keys);
+            const toml::node* mats = p.node("materials");
+            if (!mats) {
+                p.fail_missing("materials", "two material names, e.g. [\"steel\", \"rock\"]");
+            }
+            const toml::array* a = mats->as_array();
+            if (!a || a->size() != 2 || !a->get(0)->is_string() || !a->get(1)->is_string()) {
+                p.fail(*mats, "materials",
+                       fmt::format("materials must be two material names, e.g. [\"steel\", "
+                                   "\"rock\"], got {}",
+                                   io::describe_value(*mats)));
+            }
+            int idx[2];
+            for (int k = 0; k < 2; ++k) {
+                const std::string name = a->get(static_cast<size_t>(k))->as_string()->get();
+                const auto it = std::find(material_names_.begin(), material_names_.end(), name);
+                if (it == material_names_.end()) {
+                    const std::string guess = io::closest(name, material_names_);
+                    p.fail(*a->get(static_cast<size_t>(k)), "materials",
+                           fmt::format(
+                               "unknown material \"{}\"; defined materials: {}{}", name,
+                               io::quoted_list(material_names_),
+                               guess.empty() ? "" : fmt::format("; did you mean \"{}\"?", guess)));
+                }
+                idx[k] = static_cast<int>(it - material_names_.begin());
+            }
+            p.set_context(fmt::format("contact pair (\"{}\", \"{}\")", material_names_[idx[0]],
+                                      material_names_[idx[1]]));
+            const size_t ab = static_cast<size_t>(idx[0]) * nm + static_cast<size_t>(idx[1]);
+            const size_t ba = static_cast<size_t>(idx[1]) * nm + static_cast<size_t>(idx[0]);
+            if (set_by[ab] != 0) {
+                p.fail(*mats, "materials",
+                       fmt::format("this material pair is already set on line {}", set_by[ab]));
+            }
+            const ContactParams law = read_law(p, c.params);
+            c.pair_params[ab] = c.pair_params[ba] = law;
+            set_by[ab] = set_by[ba] = p.location("materials").line;
+        }
+    }
+
+    // ---- time step -------------------------------------------------------------------------
+    void choose_dt(Scenario& sc) {
+        RunSettings& run = sc.run;
+        const Model& m = sc.model;
+        TriId tri = kNone;
+        const Real stable = stable_time_step(m, &tri);
+        run.stable_dt = stable;
+        run.limiting_tri = tri;
+        const std::string line = src_.line(dt_loc_.line);
+        if (run.dt_auto) {
+            if (!std::isfinite(stable)) {
+                throw InputError(dt_loc_, "simulation.dt",
+                                 "[simulation]: dt = \"auto\" needs a stable time step limit, but "
+                                 "no body moves and contact is off; give dt in s",
+                                 line);
+            }
+            run.dt = run.dt_fraction * stable;
+            return;
+        }
+        if (run.dt > stable) {
+            std::string what;
+            if (tri != kNone) {
+                const Body& b = m.bodies[static_cast<size_t>(m.tri_body[static_cast<size_t>(tri)])];
+                what = fmt::format(
+                    "triangle {} of body \"{}\", material \"{}\"", tri, b.name,
+                    m.materials[static_cast<size_t>(m.tri_material[static_cast<size_t>(tri)])]
+                        .name);
+            } else {
+                what = "contact penalty";
+            }
+            throw InputError(dt_loc_, "simulation.dt",
+                             fmt::format("[simulation]: dt = {:.4g} s exceeds the stable limit "
+                                         "{:.4g} s ({}); use dt <= {:.3g} or dt = \"auto\"",
+                                         run.dt, stable, what, round_down_3(stable)),
+                             line);
+        }
+    }
+
+    const SourceText& src_;
+    std::string base_dir_;
+    SourceLocation dt_loc_;
+    std::vector<std::string> material_names_;
+    std::vector<BodyEntry> bodies_;
+    std::vector<LoadedMesh> meshes_;
+};
+
+}  // namespace
+
+Scenario load_scenario_from_string(const std::string& text, const std::string& name,
+                                   const std::string& base_dir) {
+    const SourceText src(name, text);
+    toml::table root;
+    try {
+        root = toml::parse(text, std::string_view(name));
+    } catch (const toml::parse_error& e) {
+        const auto& b = e.source().begin;
+        const int line = static_cast<int>(b.line), col = static_cast<int>(b.column);
+        throw InputError({name, line, col}, "",
+                         fmt::format("TOML syntax error: {}", e.description()), src.line(line));
+    }
+    ScenarioReader reader(src, base_dir);
+    return reader.read(root);
+}
+
+Scenario load_scenario(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        std::error_code ec;
+        const bool exists = fs::exists(path, ec);
+        throw InputError({path, 0, 0}, "",
+                         fmt::format("cannot open scenario file '{}': {}", path,
+                                     exists ? "permission denied or not a file" : "No such file"));
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    std::string base = fs::path(path).parent_path().string();
+    if (base.empty()) {
+        base = ".";
+    }
+    return load_scenario_from_string(text.str(), path, base);
+}
+
+}  // namespace fdem

@@ -1,0 +1,280 @@
+// A valid scenario builds the expected model: bodies, nodes, materials, BCs, contact, dt.
+// Mesh: tests/data/block_on_base.geo (block [0.5, 1] x [0.21, 0.71] above base [0, 2] x [0, 0.2]).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include "fdem/build.hpp"
+#include "fdem/mesh.hpp"
+#include "fdem/scenario.hpp"
+
+namespace fdem {
+namespace {
+
+const std::string kData = FDEM_TEST_DATA_DIR;
+
+const char* kGood = R"(# block on a base, both from one .geo
+[simulation]
+end_time = 0.02              # s
+dt = "auto"
+dt_fraction = 0.4
+gravity = [0.0, -9.81]       # m/s^2
+
+[output]
+interval = 0.001
+dir = "results"
+vtu = false
+
+[[material]]
+name = "steel"
+density = 7800.0
+youngs_modulus = 2.0e11
+poisson_ratio = 0.3
+
+[[material]]
+name = "rubber"
+density = 1100
+youngs_modulus = 1e7
+poisson_ratio = 0.45
+plane = "stress"
+viscosity = 10.0
+
+[[body]]
+name = "base"
+mesh = "block_on_base.geo"
+mesh_size = 0.1
+group = "base"
+material = "steel"
+fixed = true
+
+[[body]]
+name = "block"
+mesh = "block_on_base.geo"
+mesh_size = 0.1
+group = "block"
+material = "rubber"
+velocity = [0.5, -1.0]
+
+[[boundary]]
+body = "base"
+group = "base_bottom"
+fix = ["x", "y"]
+
+[[boundary]]
+body = "block"
+group = "block_top"
+velocity = [0.25, 0]
+components = ["x"]
+start = 0.001
+end = 0.005
+
+[[kick]]
+body = "block"
+time = 0.01
+velocity = [0, 0]
+components = ["y"]
+
+[damping]
+mass_proportional = 5.0
+until = 0.002
+
+[contact]
+algorithm = "smooth"
+penalty = 5e9
+friction = 0.3
+
+[[contact.pair]]
+materials = ["rubber", "steel"]
+friction = 0.8
+)";
+
+TEST(LoadScenario, GoodScenarioBuildsTheModel) {
+    const Scenario sc = load_scenario_from_string(kGood, "good.toml", kData);
+    const Model& m = sc.model;
+
+    // run settings
+    EXPECT_EQ(sc.run.end_time, 0.02);
+    EXPECT_TRUE(sc.run.dt_auto);
+    EXPECT_EQ(sc.run.dt_fraction, 0.4);
+    EXPECT_EQ(sc.run.output.interval, 0.001);
+    EXPECT_EQ(sc.run.output.dir, "results");
+    EXPECT_FALSE(sc.run.output.vtu);
+    EXPECT_EQ(m.gravity, (Vec2{0.0, -9.81}));
+
+    // materials and their Lame constants (theory eq. 2.5; 1e-12 relative: a few roundings)
+    ASSERT_EQ(m.materials.size(), 2u);
+    const Material& steel = m.materials[0];
+    const Material& rubber = m.materials[1];
+    EXPECT_EQ(steel.name, "steel");
+    EXPECT_EQ(steel.plane, PlaneMode::Strain);
+    const double E = 2.0e11, nu = 0.3;
+    EXPECT_NEAR(steel.mu, E / (2 * (1 + nu)), 1e-12 * E);
+    EXPECT_NEAR(steel.lambda, E * nu / ((1 + nu) * (1 - 2 * nu)), 1e-12 * E);
+    EXPECT_EQ(rubber.plane, PlaneMode::Stress);
+    EXPECT_EQ(rubber.viscosity, 10.0);
+    const double Er = 1e7, nur = 0.45;
+    EXPECT_NEAR(rubber.mu, Er / (2 * (1 + nur)), 1e-12 * Er);
+    EXPECT_NEAR(rubber.lambda, Er * nur / (1 - nur * nur), 1e-12 * Er);  // plane stress
+
+    // bodies: one connected component per entry, in file order
+    ASSERT_EQ(m.num_bodies(), 2);
+    EXPECT_EQ(m.group_names, (std::vector<std::string>{"base", "block"}));
+    EXPECT_EQ(m.bodies[0].name, "base");
+    EXPECT_TRUE(m.bodies[0].fixed);
+    EXPECT_EQ(m.bodies[0].material, 0);
+    EXPECT_EQ(m.bodies[1].group, 1);
+    EXPECT_EQ(m.bodies[1].material, 1);
+    EXPECT_FALSE(m.bodies[1].fixed);
+
+    // node and triangle counts match the mesh's physical groups
+    const MeshData mesh = read_mesh(kData + "/block_on_base.geo", 0.1);
+    int32_t tri_total = 0, node_total = 0;
+    for (const PhysicalGroup& g : mesh.groups) {
+        if (g.dim == 2) {
+            tri_total += static_cast<int32_t>(g.elements.size());
+            node_total += static_cast<int32_t>(mesh.group_nodes(g).size());
+        }
+    }
+    EXPECT_EQ(m.num_tris(), tri_total);
+    EXPECT_EQ(m.num_nodes(), node_total);
+
+    // areas: 2 x 0.2 and 0.5 x 0.5 (1e-12: sums of O(100) rounded products)
+    double area[2] = {0, 0};
+    for (TriId t = 0; t < m.num_tris(); ++t) {
+        area[m.tri_body[t]] += m.tri_area0[t];
+        EXPECT_GT(m.tri_area0[t], 0.0);
+    }
+    EXPECT_NEAR(area[0], 0.4, 1e-12);
+    EXPECT_NEAR(area[1], 0.25, 1e-12);
+
+    // initial velocity only on the block
+    for (NodeId n = m.bodies[1].node_begin; n < m.bodies[1].node_end; ++n) {
+        EXPECT_EQ(m.node_v0[n], (Vec2{0.5, -1.0}));
+    }
+    for (NodeId n = m.bodies[0].node_begin; n < m.bodies[0].node_end; ++n) {
+        EXPECT_EQ(m.node_v0[n], (Vec2{0, 0}));
+    }
+
+    // BCs: a side of length L meshed at 0.1 m has L / 0.1 segments, L / 0.1 + 1 nodes
+    ASSERT_EQ(m.bcs.size(), 2u);
+    EXPECT_EQ(m.bcs[0].nodes.size(), 21u);  // base bottom, 2 m
+    EXPECT_TRUE(m.bcs[0].has_x && m.bcs[0].has_y);
+    EXPECT_EQ(m.bcs[0].velocity, (Vec2{0, 0}));
+    for (NodeId n : m.bcs[0].nodes) {
+        EXPECT_EQ(m.node_x0[n].y, 0.0);
+        EXPECT_EQ(m.node_body[n], 0);
+    }
+    EXPECT_EQ(m.bcs[1].nodes.size(), 6u);  // block top, 0.5 m
+    EXPECT_TRUE(m.bcs[1].has_x);
+    EXPECT_FALSE(m.bcs[1].has_y);
+    EXPECT_EQ(m.bcs[1].velocity.x, 0.25);
+    EXPECT_EQ(m.bcs[1].start, 0.001);
+    EXPECT_EQ(m.bcs[1].end, 0.005);
+    for (NodeId n : m.bcs[1].nodes) {
+        EXPECT_EQ(m.node_x0[n].y, 0.71);
+        EXPECT_EQ(m.node_body[n], 1);
+    }
+
+    // kick, damping, contact
+    ASSERT_EQ(m.kicks.size(), 1u);
+    EXPECT_EQ(m.kicks[0].group, 1);
+    EXPECT_FALSE(m.kicks[0].has_x);
+    EXPECT_TRUE(m.kicks[0].has_y);
+    EXPECT_EQ(m.mass_damping.coefficient, 5.0);
+    EXPECT_EQ(m.mass_damping.until, 0.002);
+    EXPECT_EQ(m.contact.algorithm, ContactAlgorithm::Smooth);
+    EXPECT_EQ(m.contact.params.penalty, 5e9);
+    EXPECT_EQ(m.contact.params.friction, 0.3);
+    ASSERT_EQ(m.contact.pair_params.size(), 4u);
+    EXPECT_EQ(m.contact.pair_params[0 * 2 + 0].friction, 0.3);  // steel-steel: default
+    EXPECT_EQ(m.contact.pair_params[0 * 2 + 1].friction, 0.8);  // symmetric override
+    EXPECT_EQ(m.contact.pair_params[1 * 2 + 0].friction, 0.8);
+    EXPECT_EQ(m.contact.pair_params[1 * 2 + 0].penalty, 5e9);  // inherited
+
+    // dt = "auto": dt_fraction times the model's stable limit, and that limit is below the
+    // plane-stress wave transit time over the shortest edge of the moving block (a CST cannot
+    // be stable beyond it: its highest mode is faster than the continuum wave)
+    EXPECT_EQ(sc.run.stable_dt, stable_time_step(m));
+    EXPECT_EQ(sc.run.dt, 0.4 * sc.run.stable_dt);
+    double shortest = 1e9;
+    for (TriId t = m.bodies[1].tri_begin; t < m.bodies[1].tri_end; ++t) {
+        const auto& n = m.tri_nodes[t];
+        for (int k = 0; k < 3; ++k) {
+            shortest = std::min(shortest, norm(m.node_x0[n[k]] - m.node_x0[n[(k + 1) % 3]]));
+        }
+    }
+    const double c_p = std::sqrt(Er / (1100 * (1 - nur * nur)));
+    EXPECT_LT(sc.run.stable_dt, shortest / c_p);
+    EXPECT_GT(sc.run.stable_dt, 0.0);
+}
+
+TEST(LoadScenario, FromFileResolvesMeshesBesideTheScenario) {
+    const std::string dir = ::testing::TempDir() + "/fdem_scenario_dir";
+    std::filesystem::create_directories(dir);
+    std::filesystem::copy_file(kData + "/square_41_bin.msh", dir + "/square.msh",
+                               std::filesystem::copy_options::overwrite_existing);
+    std::ofstream(dir + "/s.toml") << R"(
+[simulation]
+end_time = 1e-3
+dt = 1e-7
+[[material]]
+name = "m"
+density = 1000
+youngs_modulus = 1e6
+poisson_ratio = 0
+[[body]]
+name = "sq"
+mesh = "square.msh"
+material = "m"
+)";
+    const Scenario sc = load_scenario(dir + "/s.toml");
+    EXPECT_EQ(sc.path, dir + "/s.toml");
+    EXPECT_EQ(sc.model.num_bodies(), 1);
+    EXPECT_EQ(sc.run.dt, 1e-7);
+    EXPECT_FALSE(sc.run.dt_auto);
+    EXPECT_EQ(sc.model.contact.algorithm, ContactAlgorithm::None);
+    double area = 0;
+    for (const Real a : sc.model.tri_area0) {
+        area += a;
+    }
+    EXPECT_NEAR(area, 1.0, 1e-12);        // unit square; 1e-12: sum of O(10) rounded products
+    EXPECT_EQ(sc.run.output.dir, "out");  // documented default
+}
+
+TEST(LoadScenario, SameMeshFileIsSplitIntoComponents) {
+    // no group: every triangle of the .geo, two connected components -> two bodies, one entry
+    const Scenario sc = load_scenario_from_string(R"(
+[simulation]
+end_time = 1e-3
+dt = "auto"
+[[material]]
+name = "m"
+density = 1000
+youngs_modulus = 1e6
+poisson_ratio = 0.2
+[[body]]
+name = "both"
+mesh = "block_on_base.geo"
+mesh_size = 0.1
+material = "m"
+[[boundary]]
+body = "both"
+group = "block_corner"
+fix = ["y"]
+)",
+                                                  "inline.toml", kData);
+    ASSERT_EQ(sc.model.num_bodies(), 2);
+    EXPECT_EQ(sc.model.bodies[0].group, 0);
+    EXPECT_EQ(sc.model.bodies[1].group, 0);
+    EXPECT_EQ(sc.model.group_names.size(), 1u);
+    ASSERT_EQ(sc.model.bcs.size(), 1u);
+    ASSERT_EQ(sc.model.bcs[0].nodes.size(), 1u);
+    EXPECT_EQ(sc.model.node_x0[sc.model.bcs[0].nodes[0]], (Vec2{0.5, 0.21}));
+}
+
+}  // namespace
+}  // namespace fdem
