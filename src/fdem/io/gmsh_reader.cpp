@@ -217,6 +217,10 @@ void extract(MeshData& mesh) {
     };
     gmsh::vectorpair entities;
     gmsh::model::getEntities(entities);
+    // highest dimension first, so an unsupported element is reported as the 2-D element the
+    // user meshed (6-node triangle) rather than its boundary (3-node line)
+    std::stable_sort(entities.begin(), entities.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
     for (const auto& [dim, tag] : entities) {
         std::vector<int> types;
         std::vector<std::vector<std::size_t>> elem_tags, elem_nodes;

@@ -630,11 +630,16 @@ private:
         if (run.dt > stable) {
             std::string what;
             if (tri != kNone) {
-                const Body& b = m.bodies[static_cast<size_t>(m.tri_body[static_cast<size_t>(tri)])];
+                // model ids are renumbered; the centroid lets the user find the element
+                const size_t t = static_cast<size_t>(tri);
+                const Body& b = m.bodies[static_cast<size_t>(m.tri_body[t])];
+                const auto& n = m.tri_nodes[t];
+                const Vec2 c = (m.node_x0[n[0]] + m.node_x0[n[1]] + m.node_x0[n[2]]) / 3.0;
                 what = fmt::format(
-                    "triangle {} of body \"{}\", material \"{}\"", tri, b.name,
-                    m.materials[static_cast<size_t>(m.tri_material[static_cast<size_t>(tri)])]
-                        .name);
+                    "triangle {} at ({:.4g}, {:.4g}) of body \"{}\", material "
+                    "\"{}\"",
+                    tri, c.x, c.y, b.name,
+                    m.materials[static_cast<size_t>(m.tri_material[t])].name);
             } else {
                 what = "contact penalty";
             }
