@@ -26,7 +26,7 @@ void BM_Step(benchmark::State& st) {
         drift = std::max(drift, std::abs(s.energy.total() - e0));
     }
     st.SetItemsProcessed(st.iterations() * m.num_tris());
-    st.counters["threads"] = static_cast<double>(st.range(1));
+    st.counters["omp_threads"] = static_cast<double>(st.range(1));
     st.counters["dt"] = s.dt;
     st.counters["drift"] = scale > 0 ? drift / scale : 0;
     st.counters["steps"] = static_cast<double>(s.step);

@@ -1,0 +1,52 @@
+// Memory per triangle of the block scene (model + state), target <= 200 B (docs/performance.md).
+// peak_B_per_tri: getrusage() peak resident set over the process (includes the mesh and the
+// temporaries of model building, and the ~10 MB of the program itself) divided by triangles.
+// Run one size per process, e.g. --benchmark_filter=BM_Memory/4194304, or the peak of an earlier
+// larger case is what you see. Arg: triangles.
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "fdem/simulate.hpp"
+#include "support/scenes.hpp"
+
+namespace fdem {
+namespace {
+
+double peak_rss_bytes() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return static_cast<double>(u.ru_maxrss) * 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+double current_rss_bytes() {
+    long pages = 0, resident = 0;
+    if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+        if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+        std::fclose(f);
+    }
+    return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE));
+}
+
+void BM_Memory(benchmark::State& st) {
+    const double base = current_rss_bytes();
+    for (auto _ : st) {
+        scenes::BlockOptions o;
+        o.num_tris = st.range(0);
+        o.gravity = o.clamp = true;
+        const Model m = scenes::make_block(o);
+        State s = make_state(m, 0.9 * stable_time_step(m));
+        for (int k = 0; k < 3; ++k) step(m, s);
+        const double nt = m.num_tris();
+        st.counters["peak_B_per_tri"] = peak_rss_bytes() / nt;
+        st.counters["live_B_per_tri"] = (current_rss_bytes() - base) / nt;
+        st.counters["tris"] = nt;
+    }
+}
+
+BENCHMARK(BM_Memory)->Arg(1 << 20)->Arg(1 << 22)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace fdem
