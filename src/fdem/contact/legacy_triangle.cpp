@@ -105,7 +105,11 @@ Real legacy_edge_pass(const Vec2 xe[3], const Vec2 xp[3], Real penalty, Vec2 fe[
         const Vec2 a = xe[k], b = xe[k1];
         EdgeIntegral ei;
         if (!legacy_edge_integral(a, b, xp, ei)) {
-            if (slide != nullptr) slide[k] = 0;  // out of contact: the tangential spring resets
+            // out of contact: the tangential spring resets and its energy leaves the books
+            if (slide != nullptr) {
+                if (friction) dissipated += 0.5 * fr->tangential_penalty * slide[k] * slide[k];
+                slide[k] = 0;
+            }
             continue;
         }
 
@@ -167,6 +171,93 @@ Real legacy_triangle_couple(const Vec2 xa[3], const Vec2 xb[3], Real penalty, Ve
     dissipated += legacy_edge_pass(xb, xa, penalty, fb, fa, fr, vb, va,
                                    slide != nullptr ? slide + 3 : nullptr);
     return dissipated;
+}
+
+// ---- stored energy of a couple (theory eq. 7.10) ----------------------------------------------
+
+namespace {
+
+// convex polygon of at most 16 vertices (a triangle clipped by 3 + 2 lines has at most 8)
+struct Poly {
+    Vec2 v[16];
+    int n = 0;
+};
+
+// keep the part of P where the affine function g >= 0 (Sutherland-Hodgman, one line)
+template <class G>
+void clip(Poly& P, const G& g) {
+    if (P.n == 0) return;
+    Poly out;
+    Real gv[16];
+    for (int i = 0; i < P.n; ++i)
+        gv[i] = g(P.v[i]);
+    for (int i = 0; i < P.n; ++i) {
+        const int j = (i + 1) % P.n;
+        if (gv[i] >= 0) out.v[out.n++] = P.v[i];
+        if ((gv[i] >= 0) != (gv[j] >= 0)) {
+            const Real t = gv[i] / (gv[i] - gv[j]);
+            out.v[out.n++] = P.v[i] + t * (P.v[j] - P.v[i]);
+        }
+    }
+    P = out;
+}
+
+// integral over P of the affine function f: area times f at the centroid
+template <class F>
+Real integrate_affine(const Poly& P, const F& f) {
+    if (P.n < 3) return 0;
+    Real a2 = 0;
+    Vec2 c;
+    for (int i = 0; i < P.n; ++i) {
+        const Vec2 p = P.v[i], q = P.v[(i + 1) % P.n];
+        const Real w = cross(p, q);
+        a2 += w;
+        c += w * (p + q);
+    }
+    if (a2 == 0) return 0;
+    c = c / (3.0 * a2);
+    return 0.5 * std::abs(a2) * f(c);
+}
+
+// int_S phi_t dA with phi_t = 3 min N of triangle t (eq. 7.1): S split by the sub-triangles of t
+Real integrate_potential(const Poly& S, const Vec2 t[3]) {
+    auto N = [t](Vec2 x, int k) {
+        Real n[3] = {0, 0, 0};
+        barycentric(t[0], t[1], t[2], x, n);
+        return n[k];
+    };
+    Real sum = 0;
+    for (int k = 0; k < 3; ++k) {
+        const int i = (k + 1) % 3, j = (k + 2) % 3;
+        Poly P = S;
+        clip(P, [&](Vec2 x) { return N(x, i) - N(x, k); });
+        clip(P, [&](Vec2 x) { return N(x, j) - N(x, k); });
+        sum += integrate_affine(P, [&](Vec2 x) { return 3.0 * N(x, k); });
+    }
+    return sum;
+}
+
+}  // namespace
+
+Real legacy_couple_energy(const Vec2 xa[3], const Vec2 xb[3], Real penalty) {
+    if (cross(xa[1] - xa[0], xa[2] - xa[0]) == 0 || cross(xb[1] - xb[0], xb[2] - xb[0]) == 0) {
+        return 0;
+    }
+
+    // overlap S = a clipped by the three half-planes N^b_j >= 0
+    Poly S;
+    S.n = 3;
+    for (int i = 0; i < 3; ++i)
+        S.v[i] = xa[i];
+    for (int j = 0; j < 3; ++j) {
+        clip(S, [&](Vec2 x) {
+            Real n[3] = {0, 0, 0};
+            barycentric(xb[0], xb[1], xb[2], x, n);
+            return n[j];
+        });
+    }
+    if (S.n < 3) return 0;
+    return penalty * (integrate_potential(S, xa) + integrate_potential(S, xb));
 }
 
 // ---- couples (broad phase of the triangle-to-triangle scheme, spec §2.3) ----------------------
@@ -316,7 +407,7 @@ void find_legacy_couples_brute_force(const Model& m, const Vec2* x, LegacyTriang
     merge_history(ls);
 }
 
-void add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& ls) {
+Real add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& ls) {
     const ContactModel& cm = m.contact;
 
     // Verlet skin (spec §2.3): rebuild when the accumulated 2 dt max|v| exceeds the buffer
@@ -327,7 +418,7 @@ void add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& l
     if (ls.need_rebuild || ls.skin_used > cm.buffer) find_legacy_couples(m, s.x.data(), ls);
 
     ls.active = 0;
-    Real dissipated = 0;
+    Real dissipated = 0, stored = 0;
     for (LegacyCouple& c : ls.couples) {
         const auto& na = m.tri_nodes[c.a];
         const auto& nb = m.tri_nodes[c.b];
@@ -346,6 +437,9 @@ void add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& l
         fr.friction = p.friction;
         fr.dt = s.dt;
         dissipated += legacy_triangle_couple(xa, xb, p.penalty, fa, fb, &fr, va, vb, c.slide);
+        stored += legacy_couple_energy(xa, xb, p.penalty);
+        for (Real sl : c.slide)
+            stored += 0.5 * fr.tangential_penalty * sl * sl;
 
         bool any = false;
         for (int i = 0; i < 3; ++i) {
@@ -358,6 +452,7 @@ void add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& l
         if (any) ++ls.active;
     }
     s.energy.dissipated_contact += dissipated;
+    return stored;
 }
 
 }  // namespace fdem

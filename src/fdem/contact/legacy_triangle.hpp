@@ -56,7 +56,8 @@ struct LegacyFriction {
 /// (both accumulate). Friction needs ve, vp (node velocities v^{n-1/2}) and slide[3], the
 /// sliding distance [m] of each edge of e (edge k = node k -> node k+1); slide is updated and
 /// reset to 0 for edges out of contact. Returns the dissipated friction energy [J/m] of the
-/// step (return mapping, as law.hpp), 0 without friction. Pass fr = nullptr for no friction.
+/// step (return mapping as law.hpp, plus the spring energy of a reset), 0 without friction.
+/// Pass fr = nullptr for no friction.
 Real legacy_edge_pass(const Vec2 xe[3], const Vec2 xp[3], Real penalty, Vec2 fe[3], Vec2 fp[3],
                       const LegacyFriction* fr = nullptr, const Vec2* ve = nullptr,
                       const Vec2* vp = nullptr, Real* slide = nullptr);
@@ -69,6 +70,11 @@ Real legacy_triangle_couple(const Vec2 xa[3], const Vec2 xb[3], Real penalty, Ve
                             Vec2 fb[3], const LegacyFriction* fr = nullptr,
                             const Vec2* va = nullptr, const Vec2* vb = nullptr,
                             Real* slide = nullptr);
+
+/// Stored energy of a couple [J/m]: p int_S (phi_a + phi_b) dA over the overlap S of the two
+/// triangles (theory eq. 7.10; Munjiza 2004 eqs. 2.17-2.23). Its derivative with respect to a
+/// rigid motion of a is minus the resultant (and moment) of legacy_triangle_couple() on a.
+Real legacy_couple_energy(const Vec2 xa[3], const Vec2 xb[3], Real penalty);
 
 // ---- wiring into the time step ---------------------------------------------------------------
 
@@ -113,9 +119,10 @@ void find_legacy_couples_brute_force(const Model& m, const Vec2* x, LegacyTriang
 /// couples when the skin is used up, then adds legacy_triangle_couple() of every couple to s.f
 /// and s.f_contact, penalty p = k_n of pair_parameters() (Munjiza's p: traction = p phi), and
 /// friction with p_t = k_t and mu of the same parameters. Friction dissipation is added to
-/// s.energy.dissipated_contact. The stored contact energy is not computed (not needed by the
-/// comparison runs; see docs/theory.md §7.3). Requires build_contact_topology() (boundary_tris,
+/// s.energy.dissipated_contact. Returns the stored normal contact energy of all couples at s.x
+/// [J/m] (legacy_couple_energy, theory eq. 7.10) plus the tangential springs 1/2 p_t s^2; the
+/// caller assigns it to s.energy.contact. Requires build_contact_topology() (boundary_tris,
 /// resolved params, buffer).
-void add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& ls);
+Real add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& ls);
 
 }  // namespace fdem

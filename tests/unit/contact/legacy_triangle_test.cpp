@@ -287,6 +287,62 @@ TEST(LegacyTriangleCouple, RoleSwapGivesTheSameForces) {
     }
 }
 
+// ---- stored energy (theory eq. 7.10) -----------------------------------------------------------
+
+// Munjiza's force field is the gradient of E = p int_S (phi_a + phi_b) dA for rigid motions:
+// the resultant on a equals -dE/du and its moment -dE/dtheta (central differences of the exact
+// polygon integral; E is C1, so the O(eps^2) error is ~1e-10 relative with eps = 1e-6, and kinks
+// of E'' add O(eps): 1e-6 relative covers both).
+TEST(LegacyCoupleEnergy, ForcesAreMinusTheRigidMotionGradient) {
+    Lcg rng(21);
+    int checked = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        const RandomCouple c = random_couple(rng);
+        const Real pen = 5.0;
+        Vec2 fa[3], fb[3];
+        legacy_triangle_couple(c.a, c.b, pen, fa, fb);
+        const Vec2 F = fa[0] + fa[1] + fa[2];
+        const Vec2 ctr = (c.a[0] + c.a[1] + c.a[2]) / 3.0;
+        Real M = 0;
+        for (int i = 0; i < 3; ++i)
+            M += cross(c.a[i] - ctr, fa[i]);
+        const Real E = legacy_couple_energy(c.a, c.b, pen);
+        if (E == 0) {
+            EXPECT_EQ(norm(F), 0.0);
+            continue;
+        }
+        const Real eps = 1e-6;
+        auto moved = [&](Vec2 u, Real th) {
+            Vec2 a[3];
+            const Real cs = std::cos(th), sn = std::sin(th);
+            for (int i = 0; i < 3; ++i) {
+                const Vec2 r = c.a[i] - ctr;
+                a[i] = ctr + u + Vec2{cs * r.x - sn * r.y, sn * r.x + cs * r.y};
+            }
+            return legacy_couple_energy(a, c.b, pen);
+        };
+        const Real dEx = (moved({eps, 0}, 0) - moved({-eps, 0}, 0)) / (2 * eps);
+        const Real dEy = (moved({0, eps}, 0) - moved({0, -eps}, 0)) / (2 * eps);
+        const Real dEt = (moved({}, eps) - moved({}, -eps)) / (2 * eps);
+        const Real scale = norm(F) + std::abs(M) + 1e-3 * pen;
+        EXPECT_NEAR(F.x, -dEx, 1e-6 * scale) << "trial " << trial;
+        EXPECT_NEAR(F.y, -dEy, 1e-6 * scale) << "trial " << trial;
+        EXPECT_NEAR(M, -dEt, 1e-6 * scale) << "trial " << trial;
+        ++checked;
+    }
+    EXPECT_GT(checked, 30);
+}
+
+// Hand case: b = a (identical triangles) stores p (int_a phi dA) * 2 = 2 p A (the mean of
+// 3 min N over a triangle is 1/3: pyramid of height 1 over the triangle)
+TEST(LegacyCoupleEnergy, IdenticalTriangles) {
+    const Vec2 a[3] = {{0, 0}, {2, 0}, {0.5, 1.5}};
+    const Real area = signed_area(a[0], a[1], a[2]);
+    EXPECT_NEAR(legacy_couple_energy(a, a, 3.0), 2.0 * 3.0 * area / 3.0, 1e-14);
+    const Vec2 far[3] = {{5, 5}, {6, 5}, {5, 6}};
+    EXPECT_EQ(legacy_couple_energy(a, far, 3.0), 0.0);
+}
+
 // ---- friction (spec §1.2 step 9) ---------------------------------------------------------------
 
 // Thin contactor of the hand case sliding at v in +x over a fixed p: one step stores
