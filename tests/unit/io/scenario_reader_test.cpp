@@ -278,3 +278,28 @@ fix = ["y"]
 
 }  // namespace
 }  // namespace fdem
+
+namespace fdem {
+namespace {
+
+TEST(LoadScenario, DocumentedExampleIsValid) {
+    // the annotated example of docs/scenario.md (first ```toml block) must load as documented;
+    // its mesh block_on_base.geo lives in tests/data
+    std::ifstream in(std::string(FDEM_SOURCE_DIR) + "/docs/scenario.md");
+    const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t begin = doc.find("```toml\n");
+    ASSERT_NE(begin, std::string::npos);
+    const size_t end = doc.find("```", begin + 8);
+    const std::string text = doc.substr(begin + 8, end - begin - 8);
+    const Scenario sc = load_scenario_from_string(text, "docs/scenario.md", kData);
+    EXPECT_EQ(sc.model.num_bodies(), 2);
+    EXPECT_EQ(sc.model.materials.size(), 2u);
+    EXPECT_EQ(sc.model.bcs.size(), 1u);
+    EXPECT_EQ(sc.model.kicks.size(), 1u);
+    EXPECT_EQ(sc.model.contact.algorithm, ContactAlgorithm::Smooth);
+    EXPECT_EQ(sc.run.output.dir, "out/block_on_base");
+    EXPECT_TRUE(sc.run.dt_auto);
+}
+
+}  // namespace
+}  // namespace fdem
