@@ -81,6 +81,19 @@ void init_contact_state(const Model& m, State& s) {
     cs.active_next.reserve(2 * nb + 16);
 }
 
+void update_virtual_nodes(const Model& m, State& s) {
+    const ContactModel& cm = m.contact;
+    ContactState& cs = s.contact;
+    const Vec2* x = s.x.data();
+    const Vec2* v = s.v.data();
+    for (int32_t k = 0; k < cm.num_virtual(); ++k) {
+        const auto& p = cm.virt_parent[k];
+        const auto& w = cm.virt_weight[k];
+        cs.xv[k] = w[0] * x[p[0]] + w[1] * x[p[1]] + w[2] * x[p[2]];
+        cs.vv[k] = w[0] * v[p[0]] + w[1] * v[p[1]] + w[2] * v[p[2]];
+    }
+}
+
 void add_contact_forces(const Model& m, State& s) {
     const ContactModel& cm = m.contact;
     ContactState& cs = s.contact;
@@ -97,12 +110,7 @@ void add_contact_forces(const Model& m, State& s) {
     const Vec2* v = s.v.data();
 
     // 1. virtual nodes follow their parents (spec §4.4-2)
-    for (int32_t k = 0; k < cm.num_virtual(); ++k) {
-        const auto& p = cm.virt_parent[k];
-        const auto& w = cm.virt_weight[k];
-        cs.xv[k] = w[0] * x[p[0]] + w[1] * x[p[1]] + w[2] * x[p[2]];
-        cs.vv[k] = w[0] * v[p[0]] + w[1] * v[p[1]] + w[2] * v[p[2]];
-    }
+    update_virtual_nodes(m, s);
     const Vec2* xv = cs.xv.data();
     const Vec2* vv = cs.vv.data();
 

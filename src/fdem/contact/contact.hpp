@@ -17,6 +17,10 @@ void init_contact_state(const Model& m, State& s);
 /// update pair history, contact energy and contact dissipation in s.energy / s.contact.
 void add_contact_forces(const Model& m, State& s);
 
+/// Positions and velocities of the virtual contact nodes (s.contact.xv, vv) from s.x, s.v
+/// (spec §4.4-2). add_contact_forces() calls it first; exposed for tests and output.
+void update_virtual_nodes(const Model& m, State& s);
+
 /// Largest stable dt [s] imposed by the contact penalty (spec §3.4); +inf without contact.
 Real contact_stable_dt(const Model& m);
 

@@ -3,6 +3,7 @@
 // Independent of how d and grad d were obtained, so every potential field shares it.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "fdem/contact_model.hpp"
@@ -33,7 +34,7 @@ inline Real contact_dg(Real d, Real expo, Real l) {
 /// Result of the law for one pair.
 struct LawResult {
     Vec2 f;               ///< total force on the target node, mass-scaled (eq. 19) [N/m]
-    Vec2 f_normal;        ///< its normal part (m/mbar) f_n [N/m]
+    Vec2 f_normal;        ///< penalty + damping part (m/mbar)(f_n + f_d) [N/m]
     Vec2 f_tangent;       ///< its friction part (m/mbar) f_t [N/m]
     Vec2 n;               ///< unit normal grad d / |grad d| (eq. 16), into the contactor
     Real stored = 0;      ///< stored energy of the pair now: (m/mbar)(k_n psi + k_t s^2 / 2) [J/m]
@@ -98,13 +99,22 @@ inline LawResult contact_law(const ContactParams& p, Real d, Vec2 grad, Vec2 v_r
     // normal force f_n = -k_n g grad d (eqs. 6-8), acting on the target
     const Vec2 fn = (-kn * g) * grad;
 
-    // damping f_d = gamma v_r (eq. 13), optionally its normal part only; its work on the
-    // relative displacement dt v_r of this step is -gamma |v_d|^2 dt
+    // damping f_d = gamma v_r (eq. 13), optionally its normal part only. No tension (not in
+    // the paper; spec §6.2): the normal damping component may cancel the penalty push but never
+    // pull the target in, so c_n <= k_n g |grad d|. Its work on the relative displacement
+    // dt v_r of this step is -(c_n v_rn + gamma |v_rt|^2) dt (theory eq. 6.10).
     Vec2 fd;
     if (p.damping > 0) {
-        const Vec2 vd = p.damp_normal_only ? dot(v_r, r.n) * r.n : v_r;
-        fd = p.damping * vd;
-        diss += p.damping * norm2(vd) * dt;
+        const Real push = kn * g * gn;  // |f_n|
+        const Real vrn = dot(v_r, r.n);
+        const Real cn = std::min(p.damping * vrn, push);
+        fd = cn * r.n;
+        diss += cn * vrn * dt;
+        if (!p.damp_normal_only) {
+            const Vec2 vrt = v_r - vrn * r.n;
+            fd += p.damping * vrt;
+            diss += p.damping * norm2(vrt) * dt;
+        }
     }
 
     // Coulomb friction with a tangential spring and return mapping (eqs. 14, 17)

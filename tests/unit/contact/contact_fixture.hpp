@@ -24,7 +24,8 @@ inline MeshData mesh_of(std::vector<Vec2> nodes, std::vector<std::array<int32_t,
 
 inline std::vector<int32_t> all_tris(const MeshData& mesh) {
     std::vector<int32_t> ids(mesh.tris.size());
-    for (size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<int32_t>(i);
+    for (size_t i = 0; i < ids.size(); ++i)
+        ids[i] = static_cast<int32_t>(i);
     return ids;
 }
 
@@ -77,7 +78,8 @@ inline Vec2 contact_node_x0(const Model& m, NodeId i) {
     if (i < cm.num_real_nodes) return m.node_x0[i];
     const auto v = static_cast<size_t>(i - cm.num_real_nodes);
     Vec2 x;
-    for (int k = 0; k < 3; ++k) x += cm.virt_weight[v][k] * m.node_x0[cm.virt_parent[v][k]];
+    for (int k = 0; k < 3; ++k)
+        x += cm.virt_weight[v][k] * m.node_x0[cm.virt_parent[v][k]];
     return x;
 }
 

@@ -18,8 +18,12 @@ struct Counts {
 
 Counts counts(const Model& m) {
     const ContactModel& c = m.contact;
-    return {c.boundary_edges.size(), c.boundary_nodes.size(), c.boundary_tris.size(),
-            c.chords.size(), static_cast<size_t>(c.num_virtual()), c.sub_tri.size()};
+    return {c.boundary_edges.size(),
+            c.boundary_nodes.size(),
+            c.boundary_tris.size(),
+            c.chords.size(),
+            static_cast<size_t>(c.num_virtual()),
+            c.sub_tri.size()};
 }
 
 // every sub-triangle is counter-clockwise in the reference configuration
@@ -44,7 +48,7 @@ TEST(ContactTopology, TwoTriangleSquare) {
     EXPECT_EQ(c.btris, 2u);
     EXPECT_EQ(c.chords, 1u);
     EXPECT_EQ(c.virt, 1u);
-    EXPECT_EQ(c.subs, 4u);  // 1-chord split of both triangles = centre fan
+    EXPECT_EQ(c.subs, 4u);                          // 1-chord split of both triangles = centre fan
     EXPECT_DOUBLE_EQ(m.contact.node_dist[4], 0.5);  // the chord midpoint is the centre
     EXPECT_EQ(m.contact.num_fallback_nodes, 0);
     expect_ccw(m);
