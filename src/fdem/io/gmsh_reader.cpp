@@ -109,7 +109,9 @@ bool is_msh(const std::string& path) {
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     const std::string msg = fmt::format("cannot read mesh file '{}': {}", path, text);
-    if (lower.find("element") != std::string::npos) {
+    // "Wrong node index" is what the MSH 2 reader says about an element's node
+    if (lower.find("element") != std::string::npos ||
+        lower.find("node index") != std::string::npos) {
         fail_at_section(path, "$Elements", msg);
     }
     if (lower.find("node") != std::string::npos) {

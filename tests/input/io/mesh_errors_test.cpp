@@ -87,6 +87,48 @@ xx
     EXPECT_THAT(mesh_error(path), HasSubstr(" 4 | $Nodes"));
 }
 
+TEST(MeshErrors, ElementWithUndefinedNode) {
+    // MSH 4.1: element 1 uses node 9, but $Nodes defines nodes 1-3
+    const std::string v41 = write_temp("undefined_node41.msh", R"($MeshFormat
+4.1 0 8
+$EndMeshFormat
+$Nodes
+1 3 1 3
+2 1 0 3
+1
+2
+3
+0 0 0
+1 0 0
+0 1 0
+$EndNodes
+$Elements
+1 1 1 1
+2 1 2 1
+1 1 2 9
+$EndElements
+)");
+    EXPECT_THAT(mesh_error(v41), StartsWith(v41 + ":14: error: cannot read mesh file '" + v41 +
+                                            "': Unknown node 9 in element 1"));
+    // MSH 2.2: the same mistake
+    const std::string v22 = write_temp("undefined_node22.msh", R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+3
+1 0 0 0
+2 1 0 0
+3 0 1 0
+$EndNodes
+$Elements
+1
+1 2 2 0 1 1 2 9
+$EndElements
+)");
+    EXPECT_THAT(mesh_error(v22), StartsWith(v22 + ":10: error: cannot read mesh file '" + v22 +
+                                            "': Wrong node index 9"));
+}
+
 TEST(MeshErrors, GeoSyntaxErrorCarriesGmshLine) {
     const std::string path = write_temp("syntax.geo", "Point(1) = {0, 0, 0};\nLine(1) = {1, 2;\n");
     const std::string w = mesh_error(path, 0.1);

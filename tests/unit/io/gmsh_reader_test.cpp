@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "fdem/mesh.hpp"
 
@@ -166,6 +167,26 @@ Plane Surface(1) = {1};
     EXPECT_TRUE(ccw == 0 || cw == 0) << ccw << " ccw, " << cw << " cw";
     EXPECT_NEAR(total_abs_area(m), 1.0, 1e-12);
     EXPECT_TRUE(m.groups.empty());  // no physical groups: every element is still read
+}
+
+TEST(ReadMesh, ConcurrentReadsAreSerialized) {
+    // Gmsh has global state; read_mesh holds a lock, so parallel callers get correct meshes
+    std::vector<MeshData> out(4);
+    std::vector<std::thread> threads;
+    for (size_t i = 0; i < out.size(); ++i) {
+        threads.emplace_back([&out, i] {
+            out[i] = i % 2 ? read_mesh(kData + "/square.geo", 0.25)
+                           : read_mesh(kData + "/square_41_bin.msh");
+        });
+    }
+    for (auto& t : threads) {
+        t.join();
+    }
+    const MeshData geo = read_mesh(kData + "/square.geo", 0.25);
+    const MeshData msh = read_mesh(kData + "/square_41_bin.msh");
+    for (size_t i = 0; i < out.size(); ++i) {
+        EXPECT_EQ(out[i].tris, (i % 2 ? geo : msh).tris) << i;
+    }
 }
 
 TEST(RectangleMesh, CountsGroupsAndOrientation) {
