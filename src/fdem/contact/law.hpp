@@ -127,7 +127,10 @@ inline LawResult contact_law(const ContactParams& p, Real d, Vec2 grad, Vec2 v_r
         s = s_trial;
         if (kt * std::abs(s_trial) > cap) {
             s = std::copysign(cap / kt, s_trial);
-            diss += 0.5 * kt * (s_trial * s_trial - s * s);  // spring energy released by slip
+            // slip at the capped force: dissipation = force x slip (theory eq. 6.11). (The
+            // released spring energy k (s_trial^2 - s^2)/2 would overcount by k slip^2 / 2 per
+            // step in steady sliding.)
+            diss += kt * std::abs(s) * (std::abs(s_trial) - std::abs(s));
         }
         ft = (kt * s) * t;
     }
