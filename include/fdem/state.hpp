@@ -37,7 +37,7 @@ struct State {
     std::vector<Vec2> f_contact;  ///< contact part of f [N/m]
 
     Energy energy;
-    std::vector<Vec2> scratch_bc_v;  ///< v^{n-1/2} of supported nodes (step() scratch)
+    std::vector<Vec2> scratch_bc_v;  ///< v^{n-1/2}, then x^n, of supported nodes (step() scratch)
     /// per-chunk partial sums of step()'s reductions, combined in chunk order (determinism)
     std::vector<Real> scratch_sums;
     int32_t next_kick = 0;  ///< index of the next VelocityKick to apply

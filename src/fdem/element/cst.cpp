@@ -89,8 +89,9 @@ void element_range(const Model& m, const Vec2* __restrict x, const Vec2* __restr
 void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
                     ElementPass& out) {
     const Material& mt = m.materials[m.tri_material[begin]];
-    const bool viscous = std::any_of(m.tri_eta.begin() + begin, m.tri_eta.begin() + end,
-                                     [](Real e) { return e > 0; });
+    // tri_eta = eta + 2 h xi sqrt(E rho) (theory eq. 2.6) is > 0 exactly when the material has a
+    // viscosity or a damping ratio: decided per material, without reading tri_eta
+    const bool viscous = mt.viscosity > 0 || mt.damping_ratio > 0;
     if (viscous) {
         element_range<true>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
     } else {

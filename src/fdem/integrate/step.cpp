@@ -48,7 +48,7 @@ State make_state(const Model& m, Real dt) {
     size_t n_bc = 0;
     for (const BoundaryCondition& bc : m.bcs)
         n_bc += bc.nodes.size();
-    s.scratch_bc_v.assign(n_bc, Vec2{});
+    s.scratch_bc_v.assign(2 * n_bc, Vec2{});  // v^{n-1/2}, then x^n of each supported node
     // partial sums: 4 per element chunk (element/cst.cpp), 3 per node block (below)
     const size_t n_blocks = (m.node_x0.size() + kNodeBlock - 1) / kNodeBlock;
     s.scratch_sums.assign(
@@ -59,6 +59,55 @@ State make_state(const Model& m, Real dt) {
 }
 
 namespace {
+
+// Constants of one node update.
+struct NodeUpdate {
+    Real dt;     ///< step [s]
+    Real dt_v;   ///< velocity step: dt/2 on the first step (theory eq. 5.1), else dt
+    Real c;      ///< mass damping coefficient [1/s]
+    Vec2 g;      ///< gravity [m/s^2]
+    bool first;  ///< first step: v^0 is given, v^n = v^0
+};
+
+// Steps 5-7 for every node: gravity and mass damping, v^{n+1/2} = v^{n-1/2} + dt f/m, the
+// energies at t^n, and x^{n+1} = x^n + dt v^{n+1/2} (supported nodes are redone by the caller
+// once their velocity is prescribed). Partial sums per fixed block of kNodeBlock nodes go to
+// part[kNodeSlots * block]. kGravity / kDamped compile out the gravity work (and its read of
+// X) and the damping term when they are zero, which leaves the sums bitwise unchanged.
+template <bool kGravity, bool kDamped>
+void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2* __restrict v,
+                  const Vec2* __restrict f, Real* __restrict part) {
+    const NodeId nn = m.num_nodes();
+    const NodeId n_blocks = (nn + kNodeBlock - 1) / kNodeBlock;
+    const Real* __restrict mass = m.node_mass.data();
+    const Real* __restrict inv_mass = m.node_inv_mass.data();
+    const Vec2* __restrict x0 = m.node_x0.data();
+#pragma omp parallel for schedule(static) if (n_blocks > 1)
+    for (NodeId blk = 0; blk < n_blocks; ++blk) {
+        Real kin = 0, grav = 0, damp = 0;
+        const NodeId end = std::min(nn, (blk + 1) * kNodeBlock);
+        for (NodeId i = blk * kNodeBlock; i < end; ++i) {
+            const Real inv = inv_mass[i];
+            if (inv == 0) continue;  // nodes of fixed bodies
+            const Real mi = mass[i];
+            const Vec2 v_old = v[i];
+            Vec2 fi = f[i] + mi * u.g;
+            if constexpr (kDamped) fi -= (u.c * mi) * v_old;
+            const Vec2 v_new = v_old + (u.dt_v * inv) * fi;
+            const Vec2 vn = u.first ? v_old : 0.5 * (v_old + v_new);  // v^n (theory eq. 5.2)
+            kin += mi * norm2(vn);
+            // work of gravity up to x^n: the exact potential change (theory eq. 4.2)
+            if constexpr (kGravity) grav += mi * dot(u.g, x[i] - x0[i]);
+            if constexpr (kDamped) damp += u.c * mi * dot(v_old, vn);
+            v[i] = v_new;
+            x[i] += u.dt * v_new;
+        }
+        Real* slot = part + kNodeSlots * static_cast<size_t>(blk);
+        slot[0] = kin;
+        slot[1] = grav;
+        slot[2] = damp;
+    }
+}
 
 // Apply the velocity kicks whose time has come (theory §5.2). Their energy input is counted as
 // external work, so the balance still closes.
@@ -91,12 +140,18 @@ void step(const Model& m, State& s) {
     // 1. kicks
     apply_kicks(m, s);
 
-    // 2. clear forces
+    // 2. clear forces (without contact, f_contact is never written and stays zero)
     Vec2* fc = s.f_contact.data();
+    if (m.contact.algorithm != ContactAlgorithm::None) {
 #pragma omp parallel for schedule(static) if (nn > kNodeBlock)
-    for (NodeId i = 0; i < nn; ++i) {
-        f[i] = {};
-        fc[i] = {};
+        for (NodeId i = 0; i < nn; ++i) {
+            f[i] = {};
+            fc[i] = {};
+        }
+    } else {
+#pragma omp parallel for schedule(static) if (nn > kNodeBlock)
+        for (NodeId i = 0; i < nn; ++i)
+            f[i] = {};
     }
 
     // 3. internal forces (parallel over the element schedule, deterministic)
@@ -113,12 +168,17 @@ void step(const Model& m, State& s) {
     // 4. contact forces (writes s.f, s.f_contact, s.energy.contact, dissipated_contact)
     add_contact_forces(m, s);
 
-    // remember v^{n-1/2} of supported nodes (preallocated scratch): their reaction needs it
+    // remember v^{n-1/2} and x^n of supported nodes (preallocated scratch): their reaction needs
+    // the old velocity, and their position is redone from x^n once the support has set v
+    const size_t n_bc = s.scratch_bc_v.size() / 2;
     {
         size_t k = 0;
         for (const BoundaryCondition& bc : m.bcs) {
-            for (NodeId i : bc.nodes)
-                s.scratch_bc_v[k++] = v[i];
+            for (NodeId i : bc.nodes) {
+                s.scratch_bc_v[k] = v[i];
+                s.scratch_bc_v[n_bc + k] = x[i];
+                ++k;
+            }
         }
     }
 
@@ -135,32 +195,17 @@ void step(const Model& m, State& s) {
         s.scratch_sums.resize(kNodeSlots * static_cast<size_t>(n_blocks));  // first call only
     }
     Real* part = s.scratch_sums.data();
-    const Real* mass = m.node_mass.data();
     const Real* inv_mass = m.node_inv_mass.data();
-    const Vec2* x0 = m.node_x0.data();
-#pragma omp parallel for schedule(static) if (n_blocks > 1)
-    for (NodeId blk = 0; blk < n_blocks; ++blk) {
-        Real kin = 0, grav = 0, damp = 0;
-        const NodeId end = std::min(nn, (blk + 1) * kNodeBlock);
-        for (NodeId i = blk * kNodeBlock; i < end; ++i) {
-            const Real inv = inv_mass[i];
-            if (inv == 0) continue;  // nodes of fixed bodies
-            const Real mi = mass[i];
-            const Vec2 v_old = v[i];
-            Vec2 fi = f[i] + mi * g;
-            if (mass_damped) fi -= (c * mi) * v_old;
-            const Vec2 v_new = v_old + (dt_v * inv) * fi;
-            const Vec2 vn = first ? v_old : 0.5 * (v_old + v_new);  // v^n (theory eq. 5.2)
-            kin += mi * norm2(vn);
-            // work of gravity up to x^n: the exact potential change (theory eq. 4.2)
-            grav += mi * dot(g, x[i] - x0[i]);
-            if (mass_damped) damp += c * mi * dot(v_old, vn);
-            v[i] = v_new;
-        }
-        Real* slot = part + kNodeSlots * static_cast<size_t>(blk);
-        slot[0] = kin;
-        slot[1] = grav;
-        slot[2] = damp;
+    const bool gravity = g.x != 0 || g.y != 0;
+    const NodeUpdate u{dt, dt_v, c, g, first};
+    if (gravity && mass_damped) {
+        update_nodes<true, true>(m, u, x, v, f, part);
+    } else if (gravity) {
+        update_nodes<true, false>(m, u, x, v, f, part);
+    } else if (mass_damped) {
+        update_nodes<false, true>(m, u, x, v, f, part);
+    } else {
+        update_nodes<false, false>(m, u, x, v, f, part);
     }
     // reduce in block order: the same sums whatever the thread count
     Real kinetic2 = 0, gravity_work = 0, damping_power = 0;
@@ -197,11 +242,17 @@ void step(const Model& m, State& s) {
         }
     }
 
-    // x^{n+1} = x^n + dt v^{n+1/2}
-#pragma omp parallel for schedule(static) if (nn > kNodeBlock)
-    for (NodeId i = 0; i < nn; ++i) {
-        if (inv_mass[i] == 0) continue;
-        x[i] += dt * v[i];
+    // x^{n+1} = x^n + dt v^{n+1/2} of the supported nodes, now that their v is final (the others
+    // were moved by update_nodes; redoing it from the saved x^n gives the same bits as one pass)
+    {
+        size_t k = 0;
+        for (const BoundaryCondition& bc : m.bcs) {
+            for (NodeId i : bc.nodes) {
+                const Vec2 x_old = s.scratch_bc_v[n_bc + k++];
+                if (inv_mass[i] == 0) continue;
+                x[i] = x_old + dt * v[i];
+            }
+        }
     }
 
     s.energy.kinetic = 0.5 * kinetic2;
