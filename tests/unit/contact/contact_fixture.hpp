@@ -59,8 +59,18 @@ struct ModelBuilder {
         m.materials.push_back(mat);
         m.contact.algorithm = ContactAlgorithm::Smooth;
     }
-    void add_body(const MeshData& mesh, bool fixed = false, Vec2 velocity = {}) {
+    int32_t add_material(Real E, Real rho) {
+        Material mat = m.materials[0];
+        mat.name = "mat" + std::to_string(m.materials.size());
+        mat.youngs_modulus = E;
+        mat.density = rho;
+        m.materials.push_back(mat);
+        return static_cast<int32_t>(m.materials.size()) - 1;
+    }
+    void add_body(const MeshData& mesh, bool fixed = false, Vec2 velocity = {},
+                  int32_t material = 0) {
         BodyOptions opt;
+        opt.material = material;
         opt.name = "b" + std::to_string(m.num_bodies());
         opt.fixed = fixed;
         opt.velocity = velocity;
@@ -71,6 +81,16 @@ struct ModelBuilder {
         return m;
     }
 };
+
+/// Rigidly rotate (by angle a about c) and translate (by t) a mesh.
+inline MeshData moved(MeshData mesh, Real a, Vec2 c, Vec2 t) {
+    for (Vec2& p : mesh.nodes) {
+        const Vec2 r = p - c;
+        p = c + Vec2{std::cos(a) * r.x - std::sin(a) * r.y, std::sin(a) * r.x + std::cos(a) * r.y} +
+            t;
+    }
+    return mesh;
+}
 
 /// Reference position of contact node i (real or virtual).
 inline Vec2 contact_node_x0(const Model& m, NodeId i) {
