@@ -83,3 +83,42 @@ TEST(ContactPairForce, TargetForceIsMinusGradientOfPotential) {
 
 }  // namespace
 }  // namespace fdem
+
+namespace fdem {
+namespace {
+
+// spec §4.6: penetration beyond the boundary layer is counted, never silently ignored
+TEST(ContactDiagnostics, DeepPenetrationIsCounted) {
+    testing::ModelBuilder b;
+    b.m.contact.two_way = false;
+    b.add_body(make_rectangle_mesh(0, 0, 12, 3, 12, 3), true);  // layer: 1 deep
+    const Vec2 p{6.3, 2.9};
+    b.add_body(testing::mesh_of({p, p + Vec2{0.2, 1.2}, p + Vec2{-0.2, 1.2}}, {{0, 1, 2}}));
+    const Model& m = b.finalize();
+    State s = make_state(m, 1e-6);
+    const NodeId apex = m.bodies[1].node_begin;
+
+    // depth 0.1 of a layer 1: shallow
+    add_contact_forces(m, s);
+    EXPECT_EQ(s.contact.active_contacts, 1);
+    EXPECT_NEAR(s.contact.max_depth_ratio, 0.1, 1e-12);
+    EXPECT_EQ(s.contact.deep_penetrations, 0);
+
+    // depth 0.7: still located, but deeper than deep_ratio_limit = 0.5
+    s.x[apex] = {6.3, 2.3};
+    add_contact_forces(m, s);
+    EXPECT_EQ(s.contact.deep_penetrations, 1);
+    EXPECT_NEAR(s.contact.max_depth_ratio, 0.7, 1e-12);
+
+    // depth 1.5: beyond the layer (no contactor sub-triangle holds it) -> lost inside
+    s.x[apex] = {6.3, 1.5};
+    s.contact.need_rebuild = true;
+    add_contact_forces(m, s);
+    EXPECT_EQ(s.contact.active_contacts, 0);
+    EXPECT_EQ(s.contact.lost_inside, 1);
+    EXPECT_EQ(s.contact.total_lost_inside, 1);
+    EXPECT_EQ(s.contact.total_deep_penetrations, 1);
+}
+
+}  // namespace
+}  // namespace fdem

@@ -249,3 +249,36 @@ TEST(ContactCollision, SkinRebuildIsExact) {
 
 }  // namespace
 }  // namespace fdem
+
+namespace fdem {
+namespace {
+
+// no allocation in a step after warm-up: the contact buffers keep their storage
+TEST(ContactCollision, NoReallocationAfterWarmUp) {
+    testing::ModelBuilder b;
+    b.add_body(make_rectangle_mesh(0, -0.2, 1, 0.2, 20, 4), true);
+    b.add_body(make_rectangle_mesh(0.2, 0.001, 0.2, 0.05, 4, 1), false, {2, -0.5});
+    const Model& m = b.finalize();
+    State s = make_state(m, 0.1 * stable_time_step(m));
+    for (int n = 0; n < 500; ++n)
+        step(m, s);
+    const ContactState& c = s.contact;
+    const std::vector<const void*> before = {
+        c.cand_node.data(),  c.cand_body.data(),  c.cand_begin.data(), c.cand_tri.data(),
+        c.tri_center.data(), c.tri_radius.data(), c.tri_cell.data(),   c.cell_start.data(),
+        c.cell_items.data(), c.query.data(),      c.xv.data(),         c.vv.data()};
+    const int64_t rebuilds = c.rebuilds;
+    for (int n = 0; n < 3000; ++n)
+        step(m, s);
+    const std::vector<const void*> after = {
+        c.cand_node.data(),  c.cand_body.data(),  c.cand_begin.data(), c.cand_tri.data(),
+        c.tri_center.data(), c.tri_radius.data(), c.tri_cell.data(),   c.cell_start.data(),
+        c.cell_items.data(), c.query.data(),      c.xv.data(),         c.vv.data()};
+    EXPECT_GT(c.rebuilds, rebuilds);  // the broad phase did run again
+    EXPECT_EQ(before, after);
+    // the two active-pair buffers swap every step; their capacity was reserved at start
+    EXPECT_GE(c.active.capacity(), m.contact.boundary_nodes.size());
+}
+
+}  // namespace
+}  // namespace fdem
