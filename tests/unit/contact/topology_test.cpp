@@ -5,6 +5,7 @@
 #include <map>
 #include <random>
 
+#include "fdem/error.hpp"
 #include "unit/contact/contact_fixture.hpp"
 
 namespace fdem {
@@ -331,6 +332,47 @@ TEST(ContactField, ConformingSubTriangulation) {
             ASSERT_LT(e[1], cm.num_real_nodes) << "hanging virtual node";
             EXPECT_TRUE(mesh_use.count(e)) << "sub-edge not on a mesh edge";
         }
+    }
+}
+
+}  // namespace
+}  // namespace fdem
+
+namespace fdem {
+namespace {
+
+TEST(ContactParameters, DefaultsResolvedAtBuildTime) {
+    testing::ModelBuilder b;  // E = 1 GPa, rho = 1000
+    b.add_body(make_rectangle_mesh(0, 0, 1, 1, 20, 20));
+    const Model& m = b.finalize();
+    const ContactParams& p = pair_parameters(m.contact, 0, 0);
+    EXPECT_DOUBLE_EQ(p.penalty, 5e9);                                   // k_n = 5 E (spec §4.5)
+    EXPECT_DOUBLE_EQ(p.tangential_penalty, 5e8);                        // k_t = 0.1 k_n
+    EXPECT_NEAR(m.contact.buffer, 0.2 * 0.05 / std::sqrt(2.0), 1e-15);  // 0.2 h_min
+    EXPECT_NEAR(m.contact.m_bar, 1000 * 0.05 * 0.05 / 2, 1e-12);
+}
+
+TEST(ContactParameters, PairParametersAndValidation) {
+    testing::ModelBuilder b;
+    const int32_t soft = b.add_material(1e8, 1000);
+    b.add_body(make_rectangle_mesh(0, 0, 1, 1, 2, 2));
+    b.add_body(make_rectangle_mesh(2, 0, 1, 1, 2, 2), false, {}, soft);
+    b.m.contact.pair_params.assign(4, ContactParams{});
+    b.m.contact.pair_params[1].friction = 0.3;  // contactor material 0, target material 1
+    const Model& m = b.finalize();
+    EXPECT_DOUBLE_EQ(pair_parameters(m.contact, 0, 1).friction, 0.3);
+    EXPECT_DOUBLE_EQ(pair_parameters(m.contact, 0, 1).penalty, 5e8);  // 5 x the smaller E
+    EXPECT_DOUBLE_EQ(pair_parameters(m.contact, 0, 0).penalty, 5e9);
+
+    testing::ModelBuilder bad;
+    bad.add_body(make_rectangle_mesh(0, 0, 1, 1, 2, 2));
+    bad.m.contact.params.alpha = 0.5;
+    try {
+        bad.finalize();
+        FAIL() << "alpha < 1 accepted";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.key(), "contact.alpha");
+        EXPECT_NE(std::string(e.what()).find("alpha must be >= 1, got 0.5"), std::string::npos);
     }
 }
 
