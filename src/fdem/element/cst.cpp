@@ -24,6 +24,10 @@ namespace {
 /// threads enough chunks per color, large enough that the per-chunk overhead is negligible.
 constexpr TriId kChunkTris = 256;
 
+/// Below this many chunks (8192 triangles) the pass runs on one thread: a fork/join and one
+/// barrier per color cost more than the work they would share.
+constexpr int32_t kMinParallelChunks = 32;
+
 /// Partial sums stored per chunk in State::scratch_sums.
 constexpr size_t kChunkSlots = 4;
 
@@ -136,7 +140,7 @@ ElementPass add_internal_forces(const Model& m, State& s) {
     // colors one after the other (implicit barrier at the end of each omp for); the chunks of a
     // color touch disjoint nodes, so their scatter needs no atomics. Dynamic scheduling only
     // changes which thread runs a chunk, never the order in which a node is updated.
-#pragma omp parallel if (nc > 1)
+#pragma omp parallel if (nc >= kMinParallelChunks)
     for (int32_t c = 0; c < ncolors; ++c) {
 #pragma omp for schedule(dynamic, 1)
         for (int32_t k = sc.color_begin[c]; k < sc.color_begin[c + 1]; ++k) {

@@ -29,6 +29,9 @@ namespace {
 /// the number of threads.
 constexpr NodeId kNodeBlock = 2048;
 
+/// Node loops run on one thread below this many nodes (fork/join costs more than the work).
+constexpr NodeId kMinParallelNodes = 4 * kNodeBlock;
+
 /// Partial sums per node block in State::scratch_sums: kinetic2, gravity work, damping power.
 constexpr size_t kNodeSlots = 3;
 
@@ -82,7 +85,7 @@ void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2*
     const Real* __restrict mass = m.node_mass.data();
     const Real* __restrict inv_mass = m.node_inv_mass.data();
     const Vec2* __restrict x0 = m.node_x0.data();
-#pragma omp parallel for schedule(static) if (n_blocks > 1)
+#pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
     for (NodeId blk = 0; blk < n_blocks; ++blk) {
         Real kin = 0, grav = 0, damp = 0;
         const NodeId end = std::min(nn, (blk + 1) * kNodeBlock);
@@ -143,13 +146,13 @@ void step(const Model& m, State& s) {
     // 2. clear forces (without contact, f_contact is never written and stays zero)
     Vec2* fc = s.f_contact.data();
     if (m.contact.algorithm != ContactAlgorithm::None) {
-#pragma omp parallel for schedule(static) if (nn > kNodeBlock)
+#pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
         for (NodeId i = 0; i < nn; ++i) {
             f[i] = {};
             fc[i] = {};
         }
     } else {
-#pragma omp parallel for schedule(static) if (nn > kNodeBlock)
+#pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
         for (NodeId i = 0; i < nn; ++i)
             f[i] = {};
     }
