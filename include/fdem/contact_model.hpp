@@ -40,6 +40,18 @@ struct ContactParams {
     UnloadingLaw unloading = UnloadingLaw::Continuous;
 };
 
+/// Baseline B potential phi_B (spec §1.3, docs/theory.md §7.4) of one contactor sub-triangle,
+/// written in the sub-triangle's own barycentric coordinates: phi_B(x) = min_{k < terms}
+/// sum_i coef[k][i] N_i(x). Each term is the shape function N_o of the parent mesh triangle for
+/// one of its boundary edges; coef[k][i] is its value at sub-triangle vertex i (1/0 at real
+/// nodes, 1/2 at chord midpoints, the frozen weight at an incenter), so the expression is exact
+/// in the deformed configuration as well.
+struct LegacyBoundaryTri {
+    int32_t terms = 0;  ///< 0 (vertex-only triangle: phi_B = 0), 1, 2, or 3 (single triangle)
+    Real coef[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    Real h_ref = 0;  ///< H_ref of the owning body [m] (amplitude of d_B = H_ref phi_B)
+};
+
 /// Contact data of a model. The first block is user input (scenario reader); everything below
 /// "derived" is written by build_contact_topology() and is read-only afterwards.
 ///
@@ -97,6 +109,10 @@ struct ContactModel {
     std::vector<BodyId> sub_body;
     std::vector<TriId> sub_parent;  ///< mesh triangle the sub-triangle was cut from
     std::vector<int32_t> body_sub_begin;
+
+    /// Baseline B only (ContactAlgorithm::LegacyBoundary): phi_B per contactor sub-triangle,
+    /// parallel to sub_tri (build_legacy_boundary_field(), docs/theory.md §7.4); empty otherwise.
+    std::vector<LegacyBoundaryTri> sub_legacy_b;
 
     int32_t num_virtual() const { return static_cast<int32_t>(virt_parent.size()); }
     int32_t num_contact_nodes() const { return num_real_nodes + num_virtual(); }

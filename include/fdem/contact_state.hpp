@@ -28,6 +28,54 @@ struct ActiveContact {
     PairHistory h;
 };
 
+/// Narrow-phase result of one candidate pair in one step: scratch of add_contact_forces(), which
+/// evaluates all pairs in parallel into this buffer and then applies them serially in pair
+/// order (bitwise the same for any thread count). Meaningless between steps.
+struct PairResult {
+    int32_t hist = -1;      ///< index into ContactState::active of the pair's history, -1: new
+    int32_t tri = -1;       ///< located contactor sub-triangle; -1: not in contact
+    Real N[3] = {0, 0, 0};  ///< barycentric coordinates of the target in tri
+    Vec2 f;                 ///< force on the target node [N/m]
+    PairHistory h;          ///< history after this step
+    Real stored = 0;        ///< stored energy of the pair [J/m]
+    Real dissipated = 0;    ///< energy dissipated by the evaluation [J/m]
+};
+
+/// A candidate couple of mesh triangles of different bodies for baseline A (spec §1.2,
+/// docs/theory.md §7.3), a < b, with the sliding distances of its 6 edges (friction history,
+/// spec §1.2 step 9; kept while the couple stays a candidate, so it survives the edge leaving
+/// and re-entering). Edge k of a is node k -> k+1 of a ([0..3)), then the edges of b ([3..6)).
+struct LegacyCouple {
+    TriId a = kNone, b = kNone;
+    Real slide[6] = {0, 0, 0, 0, 0, 0};  ///< sliding distance per edge [m]
+};
+
+/// Mutable data of baseline A (contact/legacy_triangle.hpp): candidate couples (sorted by
+/// (a, b)) and grid scratch. Grows only, so steps after warm-up do not allocate.
+struct LegacyTriangleState {
+    std::vector<LegacyCouple> couples;
+    std::vector<LegacyCouple> next;  ///< scratch of the rebuild (history merge)
+    Real skin_used = 0;              ///< accumulated 2 dt max|v| since the last rebuild [m]
+    bool need_rebuild = true;
+    int64_t rebuilds = 0;
+    int32_t active = 0;  ///< couples with a nonzero force at the last evaluation
+
+    // grid scratch (contents meaningless between steps)
+    std::vector<Vec2> center;
+    std::vector<Real> radius;
+    std::vector<int32_t> cell;
+    std::vector<int32_t> cell_start;
+    std::vector<int32_t> cell_items;
+    std::vector<int32_t> cursor;
+    std::vector<TriId> query;
+
+    /// per-couple forces of the last evaluation (6 nodes: a's then b's) and per-couple stored
+    /// and dissipated energy; filled in parallel, scattered serially in couple order
+    std::vector<Vec2> couple_force;
+    std::vector<Real> couple_stored;
+    std::vector<Real> couple_dissipated;
+};
+
 struct ContactState {
     int32_t active_contacts = 0;  ///< pairs in contact after the last step
 
@@ -61,10 +109,14 @@ struct ContactState {
     // ---- pair history: ping-pong buffers, both sorted by (node, body) ----------------
     std::vector<ActiveContact> active;
     std::vector<ActiveContact> active_next;
+    std::vector<PairResult> pair_out;  ///< per candidate pair, scratch (see PairResult)
 
     // ---- kinematics of the virtual nodes this step --------------------------------------
     std::vector<Vec2> xv;  ///< positions [m]
     std::vector<Vec2> vv;  ///< velocities v^{n-1/2} [m/s]
+
+    // ---- baseline A (ContactAlgorithm::LegacyTriangle): couples and their history -------
+    LegacyTriangleState legacy;
 };
 
 }  // namespace fdem

@@ -3,16 +3,20 @@
 // contactor sub-triangle), the contact law and the reaction on the contactor (eq. 20).
 //
 // Pair loop order: candidate pairs sorted by (target node, contactor body), merged with the
-// active-contact list of the previous step that is sorted the same way. Serial and therefore
-// bitwise deterministic.
+// active-contact list of the previous step that is sorted the same way. The pairs are evaluated
+// in parallel (OpenMP) into a per-pair buffer and applied serially in pair order, so the result
+// is bitwise the same for any thread count. Baseline A (ContactAlgorithm::LegacyTriangle) goes
+// to legacy_triangle.cpp; baseline B only changes the field (field.hpp evaluate_field).
 #include "contact/contact.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "contact/field.hpp"
 #include "contact/law.hpp"
+#include "contact/legacy_triangle.hpp"
 #include "detect/broad_phase.hpp"
 
 namespace fdem {
@@ -21,6 +25,9 @@ namespace {
 
 constexpr Real kLocateEps = 1e-12;     // N_i >= -eps counts as inside (spec §4.5-1)
 constexpr Real kLostCheckRatio = 0.1;  // depth ratio above which a lost pair is tested
+// candidate pairs per step below which the narrow phase runs on one thread (fork/join of a
+// parallel region costs about as much as a few thousand pair evaluations)
+constexpr int32_t kMinParallelPairs = 2048;
 
 inline Vec2 cpos(const ContactModel& cm, const Vec2* x, const Vec2* xv, NodeId i) {
     return i < cm.num_real_nodes ? x[i] : xv[i - cm.num_real_nodes];
@@ -61,6 +68,25 @@ void init_contact_state(const Model& m, State& s) {
     ContactState& cs = s.contact;
     cs = ContactState{};
     if (cm.algorithm == ContactAlgorithm::None) return;
+    if (cm.algorithm == ContactAlgorithm::LegacyTriangle) {
+        // baseline A: couples of boundary triangles; about 8 partners per triangle after
+        // warm-up (the grow-only buffers enlarge themselves if a scene needs more)
+        LegacyTriangleState& ls = cs.legacy;
+        const size_t nt = cm.boundary_tris.size();
+        ls.couples.reserve(8 * nt + 16);
+        ls.next.reserve(8 * nt + 16);
+        ls.couple_force.reserve(6 * (8 * nt + 16));
+        ls.couple_stored.reserve(8 * nt + 16);
+        ls.couple_dissipated.reserve(8 * nt + 16);
+        ls.center.reserve(nt);
+        ls.radius.reserve(nt);
+        ls.cell.reserve(nt);
+        ls.cell_items.reserve(nt);
+        ls.cell_start.reserve(4 * nt + 64);
+        ls.cursor.reserve(4 * nt + 64);
+        ls.query.reserve(nt + 16);
+        return;
+    }
     const size_t nv = static_cast<size_t>(cm.num_virtual());
     const size_t nb = cm.boundary_nodes.size();
     const size_t nt = static_cast<size_t>(cm.num_sub_tris());
@@ -71,6 +97,7 @@ void init_contact_state(const Model& m, State& s) {
     cs.cand_body.reserve(4 * nb + 16);
     cs.cand_begin.reserve(4 * nb + 17);
     cs.cand_tri.reserve(16 * nb + 64);
+    cs.pair_out.reserve(4 * nb + 16);
     cs.tri_center.reserve(nt);
     cs.tri_radius.reserve(nt);
     cs.tri_cell.reserve(nt);
@@ -94,6 +121,70 @@ void update_virtual_nodes(const Model& m, State& s) {
     }
 }
 
+namespace {
+
+// Narrow phase and law of candidate pair pr (spec §4.5-1 to -7): reads positions, velocities
+// and the previous history active[out.hist]; writes only out. Independent of every other pair,
+// so the pairs can be evaluated in any order and on any thread.
+void evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const Vec2* v,
+                   const Vec2* xv, const Vec2* vv, Real dt, int32_t pr, PairResult& out) {
+    const ContactModel& cm = m.contact;
+    const NodeId j = cs.cand_node[pr];
+    const BodyId c = cs.cand_body[pr];
+    out.tri = -1;
+
+    // locate x_j: the candidate sub-triangle with the largest min N_i >= -eps
+    const Vec2 xj = x[j];
+    int32_t best = -1;
+    Real best_min = -kLocateEps;
+    FieldSample fs;
+    Vec2 pbest[3];
+    for (int32_t k = cs.cand_begin[pr]; k < cs.cand_begin[pr + 1]; ++k) {
+        const auto& q = cm.sub_tri[cs.cand_tri[k]];
+        const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
+        Real N[3];
+        if (!barycentric(p[0], p[1], p[2], xj, N)) continue;
+        const Real mn = std::min({N[0], N[1], N[2]});
+        if (mn >= best_min) {
+            best_min = mn;
+            best = cs.cand_tri[k];
+            fs.N[0] = N[0];
+            fs.N[1] = N[1];
+            fs.N[2] = N[2];
+            pbest[0] = p[0];
+            pbest[1] = p[1];
+            pbest[2] = p[2];
+        }
+    }
+    if (best < 0) return;
+    const auto& q = cm.sub_tri[best];
+    const Real dist[3] = {cm.node_dist[q[0]], cm.node_dist[q[1]], cm.node_dist[q[2]]};
+    evaluate_field(cm, best, pbest, dist, fs);
+    if (!(fs.d > 0)) return;
+
+    // the law (eqs. 5-19) with v_r = v_c - v_j, v_c = sum N_i v_i (eq. 13)
+    const BodyId bt = m.node_body[j];
+    const ContactParams& p = pair_parameters(cm, m.bodies[c].material, m.bodies[bt].material);
+    const Real scale = m.node_mass[j] / cm.m_bar;
+    Vec2 vc;
+    for (int k = 0; k < 3; ++k)
+        vc += fs.N[k] * cpos(cm, v, vv, q[k]);
+    out.h = out.hist >= 0 ? cs.active[static_cast<size_t>(out.hist)].h : PairHistory{};
+    const LawResult r = contact_law(p, fs.d, fs.grad, vc - v[j], scale, dt, out.h);
+
+    // depth diagnostics: d relative to the local layer thickness
+    out.h.depth_ratio = fs.layer > 0 ? fs.d / fs.layer : 1.0;
+    out.tri = best;
+    out.N[0] = fs.N[0];
+    out.N[1] = fs.N[1];
+    out.N[2] = fs.N[2];
+    out.f = r.f;
+    out.stored = r.stored;
+    out.dissipated = r.dissipated;
+}
+
+}  // namespace
+
 void add_contact_forces(const Model& m, State& s) {
     const ContactModel& cm = m.contact;
     ContactState& cs = s.contact;
@@ -103,6 +194,12 @@ void add_contact_forces(const Model& m, State& s) {
     if (cm.algorithm == ContactAlgorithm::None || cm.num_sub_tris() == 0) {
         s.energy.contact = 0;
         cs.active_contacts = 0;
+        return;
+    }
+    if (cm.algorithm == ContactAlgorithm::LegacyTriangle) {
+        // baseline A: triangle-to-triangle edge integration (docs/theory.md §7.2-7.3)
+        s.energy.contact = add_legacy_triangle_forces(m, s, cs.legacy);
+        cs.active_contacts = cs.legacy.active;
         return;
     }
     const Real dt = s.dt;
@@ -130,9 +227,38 @@ void add_contact_forces(const Model& m, State& s) {
         ++cs.rebuilds;
     }
 
-    // 3. narrow phase and law, merged with the previous active list
-    Real stored = 0, dissipated = 0;
+    // 3a. match every candidate pair with its history in the previous active list (both sorted
+    //     by (node, body))
+    const int32_t npairs = static_cast<int32_t>(cs.cand_node.size());
+    auto before = [](const ActiveContact& a, NodeId j, BodyId c) {
+        return a.node < j || (a.node == j && a.body < c);
+    };
+    cs.pair_out.resize(static_cast<size_t>(npairs));
     size_t ia = 0;
+    for (int32_t pr = 0; pr < npairs; ++pr) {
+        const NodeId j = cs.cand_node[pr];
+        const BodyId c = cs.cand_body[pr];
+        while (ia < cs.active.size() && before(cs.active[ia], j, c))
+            ++ia;
+        PairResult& o = cs.pair_out[static_cast<size_t>(pr)];
+        o.hist = -1;
+        if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) {
+            o.hist = static_cast<int32_t>(ia++);
+        }
+    }
+
+    // 3b. narrow phase and law of every pair, independent of each other: in parallel into the
+    //     per-pair buffer (a pair costs ~0.1 us; below kMinParallelPairs fork/join dominates)
+    PairResult* out = cs.pair_out.data();
+    const ContactState& ccs = cs;
+#pragma omp parallel for schedule(static) if (npairs > kMinParallelPairs)
+    for (int32_t pr = 0; pr < npairs; ++pr)
+        evaluate_pair(m, ccs, x, v, xv, vv, dt, pr, out[pr]);
+
+    // 3c. apply in pair order, releasing the histories of pairs that left contact in the same
+    //     merged order: the sums and the force accumulation are those of a serial loop
+    Real stored = 0, dissipated = 0;
+    ia = 0;
     cs.active_next.clear();
     auto release = [&](const ActiveContact& a) {
         const BodyId bt = m.node_body[a.node];
@@ -146,81 +272,32 @@ void add_contact_forces(const Model& m, State& s) {
         }
         dissipated += release_energy(p, a.h, scale, lost);
     };
-    auto before = [](const ActiveContact& a, NodeId j, BodyId c) {
-        return a.node < j || (a.node == j && a.body < c);
-    };
-    const int32_t npairs = static_cast<int32_t>(cs.cand_node.size());
     for (int32_t pr = 0; pr < npairs; ++pr) {
         const NodeId j = cs.cand_node[pr];
         const BodyId c = cs.cand_body[pr];
+        const PairResult& o = out[pr];
         while (ia < cs.active.size() && before(cs.active[ia], j, c))
             release(cs.active[ia++]);
-        ActiveContact ac{j, c, PairHistory{}};
-        bool had = false;
-        if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) {
-            ac = cs.active[ia++];
-            had = true;
-        }
-
-        // locate x_j: the candidate sub-triangle with the largest min N_i >= -eps
-        const Vec2 xj = x[j];
-        int32_t best = -1;
-        Real best_min = -kLocateEps;
-        FieldSample fs;
-        Vec2 pbest[3];
-        for (int32_t k = cs.cand_begin[pr]; k < cs.cand_begin[pr + 1]; ++k) {
-            const auto& q = cm.sub_tri[cs.cand_tri[k]];
-            const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
-            Real N[3];
-            if (!barycentric(p[0], p[1], p[2], xj, N)) continue;
-            const Real mn = std::min({N[0], N[1], N[2]});
-            if (mn >= best_min) {
-                best_min = mn;
-                best = cs.cand_tri[k];
-                fs.N[0] = N[0];
-                fs.N[1] = N[1];
-                fs.N[2] = N[2];
-                pbest[0] = p[0];
-                pbest[1] = p[1];
-                pbest[2] = p[2];
-            }
-        }
-        if (best < 0) {
-            if (had) release(ac);
+        if (o.hist >= 0) ++ia;  // o.hist == ia - 1: matched in 3a
+        if (o.tri < 0) {
+            if (o.hist >= 0) release(cs.active[static_cast<size_t>(o.hist)]);
             continue;
         }
-        const auto& q = cm.sub_tri[best];
-        const Real dist[3] = {cm.node_dist[q[0]], cm.node_dist[q[1]], cm.node_dist[q[2]]};
-        evaluate_field(cm.algorithm, pbest, dist, fs);
-        if (!(fs.d > 0)) {
-            if (had) release(ac);
-            continue;
-        }
-
-        // the law (eqs. 5-19) with v_r = v_c - v_j, v_c = sum N_i v_i (eq. 13)
-        const BodyId bt = m.node_body[j];
-        const ContactParams& p = pair_parameters(cm, m.bodies[c].material, m.bodies[bt].material);
-        const Real scale = m.node_mass[j] / cm.m_bar;
-        Vec2 vc;
-        for (int k = 0; k < 3; ++k)
-            vc += fs.N[k] * cpos(cm, v, vv, q[k]);
-        const LawResult r = contact_law(p, fs.d, fs.grad, vc - v[j], scale, dt, ac.h);
 
         // f on the target, -N_i f on the contactor (eq. 20)
-        s.f[j] += r.f;
-        s.f_contact[j] += r.f;
+        const auto& q = cm.sub_tri[o.tri];
+        s.f[j] += o.f;
+        s.f_contact[j] += o.f;
         for (int k = 0; k < 3; ++k)
-            add_node_force(cm, s, q[k], -fs.N[k] * r.f);
+            add_node_force(cm, s, q[k], -o.N[k] * o.f);
 
-        // depth diagnostics: d relative to the local layer thickness
-        const Real ratio = fs.layer > 0 ? fs.d / fs.layer : 1.0;
-        ac.h.depth_ratio = ratio;
+        const Real ratio = o.h.depth_ratio;
         cs.max_depth_ratio = std::max(cs.max_depth_ratio, ratio);
         if (ratio > cm.deep_ratio_limit) ++cs.deep_penetrations;
 
-        stored += r.stored;
-        dissipated += r.dissipated;
-        cs.active_next.push_back(ac);
+        stored += o.stored;
+        dissipated += o.dissipated;
+        cs.active_next.push_back(ActiveContact{j, c, o.h});
     }
     while (ia < cs.active.size())
         release(cs.active[ia++]);
@@ -234,12 +311,61 @@ void add_contact_forces(const Model& m, State& s) {
     cs.max_depth_ratio_ever = std::max(cs.max_depth_ratio_ever, cs.max_depth_ratio);
 }
 
+namespace {
+
+// Baseline A (docs/theory.md eq. 7.11): a node of a boundary edge of length L sunk by delta
+// into a triangle of altitude H >= h_min feels phi = 3 delta / H; the consistent edge stiffness
+// (p L / H)[[1, 1/2], [1/2, 1]] has largest eigenvalue 3 p L / (2H) per edge, so a node with
+// boundary edges e gets k_i <= (3 p / h_min) sum_e L_e / 2 (= 3 p L / H for two equal edges).
+// The reaction on a partner of similar mass adds a factor 2 to k / m. Friction: one spring
+// p_t per edge and partner triangle, at most 3 partners per edge for similar element sizes.
+Real legacy_triangle_stable_dt(const Model& m) {
+    const ContactModel& cm = m.contact;
+    Real p_max = 0, pt_max = 0;
+    for (const ContactParams& p : cm.resolved) {
+        p_max = std::max(p_max, p.penalty);
+        if (p.friction > 0) pt_max = std::max(pt_max, p.tangential_penalty);
+    }
+    std::vector<Real> half_len(static_cast<size_t>(m.num_nodes()), 0.0);
+    std::vector<int32_t> edges(static_cast<size_t>(m.num_nodes()), 0);
+    for (const auto& e : cm.boundary_edges) {
+        const Real l = norm(m.node_x0[e[1]] - m.node_x0[e[0]]);
+        for (NodeId i : e) {
+            half_len[i] += 0.5 * l;
+            ++edges[i];
+        }
+    }
+    Real dt = std::numeric_limits<Real>::infinity();
+    for (NodeId i : cm.boundary_nodes) {
+        if (cm.body_fixed[m.node_body[i]] || !(m.node_mass[i] > 0)) continue;
+        const Real k = 3.0 * p_max / cm.h_min * half_len[i];
+        dt = std::min(dt, 2.0 / std::sqrt(2.0 * k / m.node_mass[i]));
+        if (pt_max > 0) {
+            const Real kt = 3.0 * edges[i] * pt_max;
+            dt = std::min(dt, 2.0 / std::sqrt(2.0 * kt / m.node_mass[i]));
+        }
+    }
+    return dt;
+}
+
+}  // namespace
+
 Real contact_stable_dt(const Model& m) {
     const ContactModel& cm = m.contact;
     Real dt = std::numeric_limits<Real>::infinity();
     if (cm.algorithm == ContactAlgorithm::None || cm.num_sub_tris() == 0 || !(cm.m_bar > 0)) {
         return dt;
     }
+    if (cm.algorithm == ContactAlgorithm::LegacyTriangle) return legacy_triangle_stable_dt(m);
+
+    // baseline B: |grad d_B| = H_ref / H_o <= H_ref / h_min instead of ~1, and the stiffness
+    // g' k_n |grad d|^2 grows with its square (docs/theory.md §7.4)
+    Real grad2 = 1;
+    for (const LegacyBoundaryTri& t : cm.sub_legacy_b) {
+        const Real r = t.h_ref / cm.h_min;
+        grad2 = std::max(grad2, r * r);
+    }
+
     // stiffness factor g' at the deepest penetration expected, d_ref = 0.1 h_min (spec §4.6);
     // the unloading branch is up to beta times stiffer than the loading one (theory eq. 6.13)
     const Real d_ref = 0.1 * cm.h_min;
@@ -252,7 +378,7 @@ Real contact_stable_dt(const Model& m) {
         }
         // omega_c = sqrt(g' k_n / mbar) * sqrt(2): the reaction on a contactor node of similar
         // mass doubles the effective stiffness (spec §3.4); damping lowers the bound
-        const Real k = gp * p.penalty;
+        const Real k = gp * p.penalty * grad2;
         const Real omega = std::sqrt(2.0 * k / cm.m_bar);
         const Real zeta = p.damping / (2.0 * std::sqrt(k * cm.m_bar));
         dt = std::min(dt, 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta));

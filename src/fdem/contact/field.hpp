@@ -48,12 +48,45 @@ inline void smooth_field(const Vec2 p[3], const Real dist[3], FieldSample& fs) {
     if (dist[2] > fs.layer) fs.layer = dist[2];
 }
 
-/// The field of the selected algorithm. This is the single plug-in point for a second potential
-/// (spec §1.3 baseline B: d_B = H_ref phi_B): it must fill d, grad and layer from the same
-/// inputs; the triangle-to-node law (law.hpp) is shared.
-inline void evaluate_field(ContactAlgorithm alg, const Vec2 p[3], const Real dist[3],
+/// Field of baseline B (spec §1.3, docs/theory.md eq. 7.9) in one contactor sub-triangle with
+/// vertices p (current positions) and terms c, mirroring smooth_field(): fs.N must already hold
+/// the barycentric coordinates of the point; fills fs.d = H_ref phi_B, fs.grad = H_ref grad
+/// phi_B (the gradient of the active term: normal to its boundary edge, into the body),
+/// fs.layer = H_ref. In a vertex-only wedge (terms = 0) d = 0: no force there (intended).
+inline void legacy_boundary_field(const Vec2 p[3], const LegacyBoundaryTri& c, FieldSample& fs) {
+    fs.layer = c.h_ref;
+    if (c.terms == 0) {
+        fs.d = 0;
+        fs.grad = Vec2{};
+        return;
+    }
+
+    // active term = smallest value (first one on ties, deterministic)
+    int k = 0;
+    Real best = 0;
+    for (int t = 0; t < c.terms; ++t) {
+        const Real v = c.coef[t][0] * fs.N[0] + c.coef[t][1] * fs.N[1] + c.coef[t][2] * fs.N[2];
+        if (t == 0 || v < best) {
+            best = v;
+            k = t;
+        }
+    }
+    Vec2 g[3];
+    shape_gradients(p[0], p[1], p[2], g);
+    fs.d = c.h_ref * best;
+    fs.grad = c.h_ref * (c.coef[k][0] * g[0] + c.coef[k][1] * g[1] + c.coef[k][2] * g[2]);
+}
+
+/// The field of the selected algorithm in contactor sub-triangle `sub` (vertices p, nodal
+/// distances dist): the single plug-in point of the triangle-to-node law (law.hpp), which is
+/// shared by the smooth field and baseline B. Baseline A (LegacyTriangle) does not come here:
+/// it integrates triangle-to-triangle (legacy_triangle.hpp).
+inline void evaluate_field(const ContactModel& cm, int32_t sub, const Vec2 p[3], const Real dist[3],
                            FieldSample& fs) {
-    switch (alg) {
+    switch (cm.algorithm) {
+        case ContactAlgorithm::LegacyBoundary:
+            legacy_boundary_field(p, cm.sub_legacy_b[static_cast<size_t>(sub)], fs);
+            break;
         case ContactAlgorithm::Smooth:
         default:
             smooth_field(p, dist, fs);

@@ -407,6 +407,13 @@ void find_legacy_couples_brute_force(const Model& m, const Vec2* x, LegacyTriang
     merge_history(ls);
 }
 
+namespace {
+
+// couples per step below which the couple loop runs on one thread (a couple costs ~1 us)
+constexpr int32_t kMinParallelCouples = 256;
+
+}  // namespace
+
 Real add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& ls) {
     const ContactModel& cm = m.contact;
 
@@ -417,17 +424,30 @@ Real add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& l
     ls.skin_used += 2.0 * s.dt * std::sqrt(v2);
     if (ls.need_rebuild || ls.skin_used > cm.buffer) find_legacy_couples(m, s.x.data(), ls);
 
-    ls.active = 0;
-    Real dissipated = 0, stored = 0;
-    for (LegacyCouple& c : ls.couples) {
+    // 1. every couple independently (its sliding history is its own): forces on its 6 nodes,
+    //    stored and dissipated energy into per-couple buffers, in parallel
+    const int32_t nc = static_cast<int32_t>(ls.couples.size());
+    ls.couple_force.resize(6 * static_cast<size_t>(nc));
+    ls.couple_stored.resize(static_cast<size_t>(nc));
+    ls.couple_dissipated.resize(static_cast<size_t>(nc));
+    const Vec2* x = s.x.data();
+    const Vec2* vel = s.v.data();
+    const Real dt = s.dt;
+    LegacyCouple* couples = ls.couples.data();
+    Vec2* cf = ls.couple_force.data();
+    Real* cst = ls.couple_stored.data();
+    Real* cdi = ls.couple_dissipated.data();
+#pragma omp parallel for schedule(static) if (nc > kMinParallelCouples)
+    for (int32_t k = 0; k < nc; ++k) {
+        LegacyCouple& c = couples[k];
         const auto& na = m.tri_nodes[c.a];
         const auto& nb = m.tri_nodes[c.b];
-        Vec2 xa[3], xb[3], va[3], vb[3], fa[3], fb[3];
+        Vec2 xa[3], xb[3], va[3], vb[3];
         for (int i = 0; i < 3; ++i) {
-            xa[i] = s.x[na[i]];
-            xb[i] = s.x[nb[i]];
-            va[i] = s.v[na[i]];
-            vb[i] = s.v[nb[i]];
+            xa[i] = x[na[i]];
+            xb[i] = x[nb[i]];
+            va[i] = vel[na[i]];
+            vb[i] = vel[nb[i]];
         }
         const int32_t mat_a = m.bodies[m.tri_body[c.a]].material;
         const int32_t mat_b = m.bodies[m.tri_body[c.b]].material;
@@ -435,19 +455,33 @@ Real add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& l
         LegacyFriction fr;
         fr.tangential_penalty = p.tangential_penalty;
         fr.friction = p.friction;
-        fr.dt = s.dt;
-        dissipated += legacy_triangle_couple(xa, xb, p.penalty, fa, fb, &fr, va, vb, c.slide);
-        stored += legacy_couple_energy(xa, xb, p.penalty);
-        for (Real sl : c.slide)
-            stored += 0.5 * fr.tangential_penalty * sl * sl;
+        fr.dt = dt;
+        Vec2* f = cf + 6 * static_cast<size_t>(k);
+        cdi[k] = legacy_triangle_couple(xa, xb, p.penalty, f, f + 3, &fr, va, vb, c.slide);
+        Real stored = legacy_couple_energy(xa, xb, p.penalty);  // theory eq. 7.10
+        if (fr.friction > 0) {
+            for (Real sl : c.slide)
+                stored += 0.5 * fr.tangential_penalty * sl * sl;
+        }
+        cst[k] = stored;
+    }
 
+    // 2. scatter in couple order: the same sums whatever the thread count
+    ls.active = 0;
+    Real dissipated = 0, stored = 0;
+    for (int32_t k = 0; k < nc; ++k) {
+        const auto& na = m.tri_nodes[couples[k].a];
+        const auto& nb = m.tri_nodes[couples[k].b];
+        const Vec2* f = cf + 6 * static_cast<size_t>(k);
+        dissipated += cdi[k];
+        stored += cst[k];
         bool any = false;
         for (int i = 0; i < 3; ++i) {
-            any = any || fa[i].x != 0 || fa[i].y != 0;
-            s.f[na[i]] += fa[i];
-            s.f_contact[na[i]] += fa[i];
-            s.f[nb[i]] += fb[i];
-            s.f_contact[nb[i]] += fb[i];
+            any = any || f[i].x != 0 || f[i].y != 0;
+            s.f[na[i]] += f[i];
+            s.f_contact[na[i]] += f[i];
+            s.f[nb[i]] += f[3 + i];
+            s.f_contact[nb[i]] += f[3 + i];
         }
         if (any) ++ls.active;
     }

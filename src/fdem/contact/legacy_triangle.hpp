@@ -78,33 +78,8 @@ Real legacy_couple_energy(const Vec2 xa[3], const Vec2 xb[3], Real penalty);
 
 // ---- wiring into the time step ---------------------------------------------------------------
 
-/// A candidate couple of mesh triangles of different bodies, a < b, with the sliding
-/// distances of its 6 edges (friction history, spec §1.2 step 9; kept while the couple stays a
-/// candidate, so it survives the edge leaving and re-entering).
-struct LegacyCouple {
-    TriId a = kNone, b = kNone;
-    Real slide[6] = {0, 0, 0, 0, 0, 0};
-};
-
-/// Mutable data of baseline A: candidate couples (sorted by (a, b)) and grid scratch. Grows
-/// only, so steps after warm-up do not allocate.
-struct LegacyTriangleState {
-    std::vector<LegacyCouple> couples;
-    std::vector<LegacyCouple> next;  ///< scratch of the rebuild (history merge)
-    Real skin_used = 0;              ///< accumulated 2 dt max|v| since the last rebuild [m]
-    bool need_rebuild = true;
-    int64_t rebuilds = 0;
-    int32_t active = 0;  ///< couples with a nonzero force at the last evaluation
-
-    // grid scratch
-    std::vector<Vec2> center;
-    std::vector<Real> radius;
-    std::vector<int32_t> cell;
-    std::vector<int32_t> cell_start;
-    std::vector<int32_t> cell_items;
-    std::vector<int32_t> cursor;
-    std::vector<TriId> query;
-};
+// LegacyCouple and LegacyTriangleState (couples, sliding history, scratch) are in
+// fdem/contact_state.hpp; ContactState::legacy holds the one of a run.
 
 /// Candidate couples (a, b) of contact-topology boundary triangles (m.contact.boundary_tris)
 /// of different bodies, not both fixed, whose bounding circles (centroid, largest

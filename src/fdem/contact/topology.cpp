@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "contact/contact.hpp"
+#include "contact/legacy_boundary.hpp"
 #include "fdem/error.hpp"
 
 namespace fdem {
@@ -305,14 +306,12 @@ void build_contact_topology(Model& m) {
     cm.sub_body.clear();
     cm.sub_parent.clear();
     cm.body_sub_begin.clear();
+    cm.sub_legacy_b.clear();
     cm.num_fallback_nodes = 0;
     cm.num_real_nodes = m.num_nodes();
     if (cm.algorithm == ContactAlgorithm::None) return;
-    if (cm.algorithm != ContactAlgorithm::Smooth) {
-        throw InputError(SourceLocation{}, "contact.algorithm",
-                         "contact algorithm: only \"smooth\" is implemented so far (the legacy "
-                         "Munjiza potentials plug into contact/field.hpp evaluate_field)");
-    }
+    // the legacy potentials (docs/theory.md §7) use the same topology: baseline A its
+    // boundary_tris, parameters and buffer, baseline B also the sub-triangles
     resolve_params(m);
 
     // m_bar = smallest element mass over all bodies, fixed ones included (eq. 19, spec §4.5-7);
@@ -353,6 +352,11 @@ void build_contact_topology(Model& m) {
     for (BodyId b = 0; b < m.num_bodies(); ++b)
         tb.body(b);
     cm.node_dist.resize(static_cast<size_t>(cm.num_contact_nodes()), 0.0);
+
+    // baseline B: phi_B per contactor sub-triangle (spec §1.3, docs/theory.md §7.4)
+    if (cm.algorithm == ContactAlgorithm::LegacyBoundary) {
+        cm.sub_legacy_b = build_legacy_boundary_field(m).sub;
+    }
 }
 
 }  // namespace fdem
