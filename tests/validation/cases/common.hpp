@@ -1,0 +1,163 @@
+// Shared pieces of the paper-reproduction cases (spec §5, §8 T13-T20): checks with their
+// tolerances, time series written as CSV, body sums over nodes. Header-only so that the same code
+// runs in the CTest suite (tests/validation/*_test.cpp, reduced resolution) and in the validation
+// driver (tools/validate, full resolution, writes docs/validation/).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fdem/build.hpp"
+#include "fdem/model.hpp"
+#include "fdem/simulate.hpp"
+#include "fdem/state.hpp"
+
+namespace fdem::validation {
+
+/// How a measured value is compared with the expected one.
+enum class Rel {
+    Abs,      ///< |measured - expected| <= tol
+    RelTol,   ///< |measured / expected - 1| <= tol
+    AtMost,   ///< measured <= expected
+    AtLeast,  ///< measured >= expected
+    Report,   ///< no pass/fail: a number the spec asks to report
+};
+
+/// One validation check: a row of docs/validation/README.md and one CTest assertion.
+struct Check {
+    std::string id;    ///< spec test id, e.g. "T13"
+    std::string name;  ///< what is checked
+    double measured = 0;
+    double expected = 0;
+    Rel rel = Rel::Report;
+    double tol = 0;    ///< for Abs / RelTol
+    std::string unit;  ///< unit of measured/expected ("" = dimensionless)
+    std::string why;   ///< where the expected value and the tolerance come from
+    bool pass() const {
+        if (!std::isfinite(measured)) return rel == Rel::Report;
+        switch (rel) {
+            case Rel::Abs:
+                return std::abs(measured - expected) <= tol;
+            case Rel::RelTol:
+                return std::abs(measured / expected - 1.0) <= tol;
+            case Rel::AtMost:
+                return measured <= expected;
+            case Rel::AtLeast:
+                return measured >= expected;
+            case Rel::Report:
+                return true;
+        }
+        return false;
+    }
+    std::string tolerance_text() const {
+        char b[64];
+        switch (rel) {
+            case Rel::Abs:
+                std::snprintf(b, sizeof b, "± %.3g %s", tol, unit.c_str());
+                break;
+            case Rel::RelTol:
+                std::snprintf(b, sizeof b, "± %.3g %%", 100 * tol);
+                break;
+            case Rel::AtMost:
+                std::snprintf(b, sizeof b, "≤ expected");
+                break;
+            case Rel::AtLeast:
+                std::snprintf(b, sizeof b, "≥ expected");
+                break;
+            case Rel::Report:
+                std::snprintf(b, sizeof b, "reported");
+                break;
+        }
+        return b;
+    }
+};
+
+inline Check check(std::string id, std::string name, double measured, Rel rel, double expected,
+                   double tol, std::string unit, std::string why) {
+    return Check{std::move(id), std::move(name), measured,      expected, rel,
+                 tol,           std::move(unit), std::move(why)};
+}
+
+/// Columns of equal length written as one CSV file (header = column names).
+struct Table {
+    std::vector<std::string> names;
+    std::vector<std::vector<double>> cols;
+    explicit Table(std::vector<std::string> n) : names(std::move(n)), cols(names.size()) {}
+    void row(std::initializer_list<double> v) {
+        size_t k = 0;
+        for (double x : v)
+            cols[k++].push_back(x);
+    }
+    size_t size() const { return cols.empty() ? 0 : cols[0].size(); }
+    bool write(const std::string& path) const {
+        std::ofstream f(path);
+        if (!f) return false;
+        for (size_t k = 0; k < names.size(); ++k)
+            f << (k ? "," : "") << names[k];
+        f << "\n";
+        char b[32];
+        for (size_t i = 0; i < size(); ++i) {
+            for (size_t k = 0; k < cols.size(); ++k) {
+                std::snprintf(b, sizeof b, "%.10g", cols[k][i]);
+                f << (k ? "," : "") << b;
+            }
+            f << "\n";
+        }
+        return static_cast<bool>(f);
+    }
+};
+
+/// Sums over the nodes of a body: mass, centre of mass, momentum, contact force.
+struct BodySums {
+    double mass = 0;
+    Vec2 com, momentum, contact_force;
+};
+
+inline BodySums body_sums(const Model& m, const State& s, BodyId b) {
+    BodySums r;
+    for (NodeId i = m.bodies[b].node_begin; i < m.bodies[b].node_end; ++i) {
+        const double mi = m.node_mass[i];
+        r.mass += mi;
+        r.com += mi * s.x[i];
+        r.momentum += mi * s.v[i];
+        r.contact_force += s.f_contact[i];
+    }
+    r.com = r.com / r.mass;
+    return r;
+}
+
+/// Largest contact depth d [m] over the active pairs of the last step.
+inline double max_active_depth(const State& s) {
+    double d = 0;
+    for (const auto& a : s.contact.active)
+        d = std::max(d, a.h.d_prev);
+    return d;
+}
+
+inline double mean(const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v)
+        s += x;
+    return v.empty() ? NAN : s / static_cast<double>(v.size());
+}
+
+inline double stddev(const std::vector<double>& v) {
+    const double mu = mean(v);
+    double s = 0;
+    for (double x : v)
+        s += (x - mu) * (x - mu);
+    return v.size() < 2 ? NAN : std::sqrt(s / static_cast<double>(v.size() - 1));
+}
+
+inline double median(std::vector<double> v) {
+    if (v.empty()) return NAN;
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+}
+
+}  // namespace fdem::validation

@@ -1,0 +1,21 @@
+// T15 (spec §8) at reduced resolution (mesh size 0.1 m instead of 0.05 m; same checks and
+// tolerances). Full resolution: scripts/validate (label `full`).
+#include <gtest/gtest.h>
+
+#include "validation/cases/disk_impact.hpp"
+
+namespace fdem::validation {
+namespace {
+
+TEST(DiskImpact, T15ReducedResolution) {
+    for (const Check& c : disk_impact_suite(DiskImpactOptions::quick(), "")) {
+        std::printf("[ info ] %s %s: %.6g (expected %.6g, %s)\n", c.id.c_str(), c.name.c_str(),
+                    c.measured, c.expected, c.tolerance_text().c_str());
+        EXPECT_TRUE(c.pass()) << c.id << " " << c.name << ": measured " << c.measured
+                              << ", expected " << c.expected << " " << c.tolerance_text() << " ("
+                              << c.why << ")";
+    }
+}
+
+}  // namespace
+}  // namespace fdem::validation
