@@ -1,8 +1,14 @@
 // fdem command-line program: run or check a scenario.
 //   fdem run SCENARIO [--out DIR] [--end-time T] [--threads N] [--quiet]
+//                     [--checkpoint-every T] [--restart FILE] [--print-hash]
 //   fdem check SCENARIO
-// Exit codes: 0 success, 1 simulation failure, 2 usage or input error.
+// Exit codes: 0 success, 1 simulation failure, 2 usage or input error (including a checkpoint
+// that does not belong to the scenario), 130 / 143 stopped by SIGINT / SIGTERM after writing a
+// checkpoint (128 + signal number, the shell convention).
 #include <unistd.h>
+
+#include <csignal>
+#include <memory>
 
 #include <algorithm>
 #include <chrono>
@@ -11,16 +17,35 @@
 #include <iostream>
 #include <string>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <omp.h>
+#include <CLI/CLI.hpp>
 
 #include "fdem/fdem.hpp"
+#include "integrate/run_checks.hpp"
+#include "io/checkpoint.hpp"
 
 namespace {
 
 constexpr int kExitSimulation = 1;
 constexpr int kExitInput = 2;
+
+/// Signal number of a pending SIGINT / SIGTERM (0: none). The run finishes its step, writes a
+/// checkpoint and exits with 128 + signal.
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void on_stop_signal(int sig) {
+    g_stop_signal = sig;
+}
+
+void install_signal_handlers() {
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = 0;
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+}
 
 struct RunOptions {
     std::string scenario;
@@ -28,14 +53,17 @@ struct RunOptions {
     double end_time = -1;
     int threads = 0;
     bool quiet = false;
+    double checkpoint_every = 0;  ///< simulated seconds between checkpoints; 0 = none
+    std::string restart;          ///< checkpoint to continue from
+    bool print_hash = false;
 };
 
 // Rough resident size of the model and state [bytes], for `fdem check`.
 size_t memory_estimate(const fdem::Model& m) {
     const size_t nn = static_cast<size_t>(m.num_nodes()), nt = static_cast<size_t>(m.num_tris());
-    const size_t model = nn * (2 * sizeof(fdem::Vec2) + 2 * sizeof(double) + sizeof(int32_t)) +
-                         nt * (3 * sizeof(int32_t) + 2 * sizeof(int32_t) + sizeof(fdem::Mat2) +
-                               2 * sizeof(double));
+    const size_t model =
+        nn * (2 * sizeof(fdem::Vec2) + 2 * sizeof(double) + sizeof(int32_t)) +
+        nt * (3 * sizeof(int32_t) + 2 * sizeof(int32_t) + sizeof(fdem::Mat2) + 2 * sizeof(double));
     const size_t state = nn * 4 * sizeof(fdem::Vec2);
     return model + state;
 }
@@ -43,15 +71,16 @@ size_t memory_estimate(const fdem::Model& m) {
 void print_summary(const fdem::Scenario& sc) {
     const fdem::Model& m = sc.model;
     size_t fixed = 0;
-    for (const auto& b : m.bodies) fixed += b.fixed ? 1 : 0;
+    for (const auto& b : m.bodies)
+        fixed += b.fixed ? 1 : 0;
     fmt::print("scenario   {}\n", sc.path);
     fmt::print("bodies     {} ({} fixed) from {} body entries\n", m.num_bodies(), fixed,
                m.group_names.size());
     fmt::print("nodes      {}\ntriangles  {}\nmaterials  {}\n", m.num_nodes(), m.num_tris(),
                m.materials.size());
     if (sc.run.limiting_tri != fdem::kNone) {
-        fmt::print("stable dt  {:.4g} s (limited by triangle {}, material \"{}\")\n", sc.run.stable_dt,
-                   sc.run.limiting_tri,
+        fmt::print("stable dt  {:.4g} s (limited by triangle {}, material \"{}\")\n",
+                   sc.run.stable_dt, sc.run.limiting_tri,
                    m.materials[m.tri_material[sc.run.limiting_tri]].name);
     } else {
         fmt::print("stable dt  {:.4g} s (limited by the contact penalty)\n", sc.run.stable_dt);
@@ -78,51 +107,100 @@ int run(const RunOptions& opt) {
     std::error_code ec;
     fs::create_directories(out, ec);
     if (ec) {
-        throw fdem::InputError({sc.path, 0, 0}, "output.dir",
-                               fmt::format("cannot create output folder '{}': {}", out.string(),
-                                           ec.message()));
+        throw fdem::InputError(
+            {sc.path, 0, 0}, "output.dir",
+            fmt::format("cannot create output folder '{}': {}", out.string(), ec.message()));
     }
+    const std::string checkpoint_path = (out / "checkpoint.fdck").string();
 
+    // fresh state, or the state and output bookkeeping of a checkpoint
     fdem::State s = fdem::make_state(m, sc.run.dt);
-    fdem::HistoryWriter history((out / "history.csv").string());
+    fdem::RunProgress prog;
+    if (!opt.restart.empty()) {
+        fdem::read_checkpoint(opt.restart, m, s, prog);
+        if (!opt.quiet) {
+            fmt::print("restart    {} at step {} (t = {:.6g} s)\n", opt.restart, s.step, s.time);
+        }
+    }
+    std::unique_ptr<fdem::HistoryWriter> history =
+        opt.restart.empty()
+            ? std::make_unique<fdem::HistoryWriter>((out / "history.csv").string())
+            : std::make_unique<fdem::HistoryWriter>((out / "history.csv").string(), s.step);
     fdem::PvdSeries series((out / "series.pvd").string());
+    for (const auto& [t, file] : prog.frames)
+        series.add(t, file);
+
     const double interval =
         sc.run.output.interval > 0 ? sc.run.output.interval : sc.run.end_time / 100.0;
-    int frame = 0;
-    double next_output = 0;
+    std::string last_frame;  // last output frame written by this process (a good state)
     auto write_output = [&]() {
-        history.write(m, s);
+        history->write(m, s);
         if (sc.run.output.vtu) {
-            const std::string name = fmt::format("frame_{:06d}.vtu", frame);
+            const std::string name = fmt::format("frame_{:06d}.vtu", prog.frame);
             fdem::write_vtu((out / name).string(), m, s);
             series.add(s.time, name);
+            prog.frames.emplace_back(s.time, name);
+            last_frame = fmt::format("{} (t = {:.6g} s)", (out / name).string(), s.time);
         }
-        ++frame;
-        next_output += interval;
+        ++prog.frame;
+        prog.next_output += interval;
     };
+    std::string last_checkpoint;
+    auto write_checkpoint = [&]() {
+        fdem::write_checkpoint(checkpoint_path, m, s, prog);
+        last_checkpoint =
+            fmt::format("{} (step {}, t = {:.6g} s)", checkpoint_path, s.step, s.time);
+    };
+    double next_checkpoint = s.time + opt.checkpoint_every;
 
+    install_signal_handlers();
     const auto t0 = clock::now();
     auto last_progress = t0;
+    const int64_t start_step = s.step;
     const int64_t total_steps = static_cast<int64_t>(std::ceil(sc.run.end_time / s.dt - 1e-9));
-    double e0 = 0, max_err = 0, scale = 0;
-    fdem::State last_good;
+    bool warned = false;
     try {
         while (s.step < total_steps) {
             fdem::step(m, s);
-            if (s.step == 1) e0 = s.energy.total();
-            const auto& e = s.energy;
-            scale = std::max({scale, e.kinetic + e.strain + e.contact, std::abs(e.work_gravity),
-                              std::abs(e.work_external)});
-            max_err = std::max(max_err, std::abs(e.total() - e0));
-            if (s.step % 16 == 0 || s.step == total_steps) fdem::check_state(m, s);
-            if (s.time >= next_output - 0.5 * s.dt || s.step == total_steps) write_output();
+            const std::string warning = fdem::check_run(m, s, sc.run, prog.energy);
+            if (!warning.empty() && !warned) {
+                fmt::print(stderr, "{}{} (further warnings suppressed)\n", tty ? "\n" : "",
+                           warning);
+                warned = true;
+            }
+            const bool last = s.step == total_steps;
+            const bool output_due = s.time >= prog.next_output - 0.5 * s.dt || last;
+            const bool checkpoint_due =
+                opt.checkpoint_every > 0 && (s.time >= next_checkpoint - 0.5 * s.dt || last);
+            // NaN/Inf check every 16 steps and before anything is written: files hold good states
+            if (s.step % 16 == 0 || output_due || checkpoint_due || g_stop_signal != 0) {
+                fdem::check_state(m, s);
+            }
+            if (output_due) write_output();
+            if (checkpoint_due) {
+                write_checkpoint();
+                while (next_checkpoint <= s.time + 0.5 * s.dt)
+                    next_checkpoint += opt.checkpoint_every;
+            }
+            if (g_stop_signal != 0) {
+                const int sig = g_stop_signal;
+                if (!checkpoint_due) write_checkpoint();
+                if (tty) fmt::print(stderr, "\n");
+                fmt::print(stderr,
+                           "stopped by {} after step {} (t = {:.6g} s); checkpoint written to {}\n"
+                           "continue with: fdem run {} --out {} --restart {}\n",
+                           sig == SIGINT ? "SIGINT" : "SIGTERM", s.step, s.time, checkpoint_path,
+                           opt.scenario, out.string(), checkpoint_path);
+                return 128 + sig;
+            }
             if (tty) {
                 const auto now = clock::now();
                 if (now - last_progress > std::chrono::milliseconds(500)) {
                     last_progress = now;
                     const double wall = std::chrono::duration<double>(now - t0).count();
-                    const double sps = static_cast<double>(s.step) / wall;
-                    fmt::print(stderr, "\rstep {:>9} / {}  t = {:.4e} s  {:.3g} steps/s  ETA {:.0f} s   ",
+                    const double sps = static_cast<double>(s.step - start_step) / wall;
+                    fmt::print(stderr,
+                               "\rstep {:>9} / {}  t = {:.4e} s  {:.3g} steps/s  ETA {:.0f} s   ",
                                s.step, total_steps, s.time, sps,
                                static_cast<double>(total_steps - s.step) / sps);
                 }
@@ -133,21 +211,34 @@ int run(const RunOptions& opt) {
         fmt::print(stderr, "error: {}\n", err.what());
         fdem::write_vtu((out / "failure.vtu").string(), m, s);
         fmt::print(stderr, "the state at failure is in {}\n", (out / "failure.vtu").string());
+        if (!last_frame.empty()) fmt::print(stderr, "last good output frame: {}\n", last_frame);
+        if (!last_checkpoint.empty()) {
+            fmt::print(stderr, "last good checkpoint: {}\n", last_checkpoint);
+        }
         return kExitSimulation;
     }
     if (tty) fmt::print(stderr, "\n");
     const double wall = std::chrono::duration<double>(clock::now() - t0).count();
+    const uint64_t hash = fdem::state_hash(s);
     if (!opt.quiet) {
+        const double steps = static_cast<double>(s.step - start_step);
         fmt::print("done       {} steps in {:.2f} s ({:.3g} steps/s, {:.3g} element-steps/s)\n",
-                   s.step, wall, static_cast<double>(s.step) / wall,
-                   static_cast<double>(s.step) * m.num_tris() / wall);
-        fmt::print("energy     kinetic {:.6g}, strain {:.6g}, contact {:.6g}, dissipated {:.6g} J/m\n",
-                   s.energy.kinetic, s.energy.strain, s.energy.contact,
-                   s.energy.dissipated_viscous + s.energy.dissipated_contact);
-        fmt::print("balance    max |E_total - E_0| = {:.3g} J/m = {:.3g} % of the energy scale "
-                   "{:.6g} J/m\n",
-                   max_err, scale > 0 ? 100.0 * max_err / scale : 0.0, scale);
-        fmt::print("output     {} ({} frames; open series.pvd in ParaView)\n", out.string(), frame);
+                   s.step - start_step, wall, steps / wall, steps * m.num_tris() / wall);
+        fmt::print(
+            "energy     kinetic {:.6g}, strain {:.6g}, contact {:.6g}, dissipated {:.6g} J/m\n",
+            s.energy.kinetic, s.energy.strain, s.energy.contact,
+            s.energy.dissipated_viscous + s.energy.dissipated_contact);
+        const fdem::EnergyMonitor& e = prog.energy;
+        fmt::print(
+            "balance    max |E_total - E_0| = {:.3g} J/m = {:.3g} % of the energy scale "
+            "{:.6g} J/m\n",
+            e.max_error, e.scale > 0 ? 100.0 * e.max_error / e.scale : 0.0, e.scale);
+        fmt::print("output     {} ({} frames; open series.pvd in ParaView)\n", out.string(),
+                   prog.frame);
+        fmt::print("state      step {}, t = {:.6g} s, hash {:016x} (x, v, energies)\n", s.step,
+                   s.time, hash);
+    } else if (opt.print_hash) {
+        fmt::print("hash {:016x}\n", hash);
     }
     return 0;
 }
@@ -168,6 +259,14 @@ int main(int argc, char** argv) {
     run_cmd->add_option("--threads", ro.threads, "OpenMP threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
     run_cmd->add_flag("--quiet", ro.quiet, "no summary and no progress line");
+    run_cmd
+        ->add_option("--checkpoint-every", ro.checkpoint_every,
+                     "write OUT/checkpoint.fdck every T simulated seconds and at the end")
+        ->check(CLI::PositiveNumber);
+    run_cmd->add_option("--restart", ro.restart,
+                        "continue from a checkpoint written for the same scenario");
+    run_cmd->add_flag("--print-hash", ro.print_hash,
+                      "with --quiet: print only 'hash <hex>' of the final x, v and energies");
 
     std::string check_path;
     auto* check_cmd = app.add_subcommand("check", "validate a scenario and print a model summary");

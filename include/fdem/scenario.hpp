@@ -15,6 +15,15 @@ struct OutputSettings {
     std::string dir = "out";         ///< output folder (relative to the working directory)
 };
 
+/// What the [checks] table does when a node passes through the contact layer.
+enum class PenetrationCheck { Fail, Warn, Off };
+
+/// Run-time failure checks ([checks] table, docs/scenario.md).
+struct CheckSettings {
+    Real energy_tolerance = 0.1;  ///< stop when |E_total - E_0| > this x energy scale; 0 = off
+    PenetrationCheck penetration = PenetrationCheck::Fail;
+};
+
 struct RunSettings {
     Real dt = 0;               ///< time step [s] actually used
     bool dt_auto = false;      ///< dt = "auto" was given
@@ -23,6 +32,7 @@ struct RunSettings {
     Real stable_dt = 0;        ///< stable limit computed at load [s]
     TriId limiting_tri = kNone;///< element setting the stable limit
     OutputSettings output;
+    CheckSettings checks;
 };
 
 struct Scenario {

@@ -28,3 +28,42 @@ set_tests_properties(cli.check_prints_summary PROPERTIES
   PASS_REGULAR_EXPRESSION "stable dt +[0-9.e+-]+ s \\(limited by triangle [0-9]+, material \"soft\"\\)")
 set_tests_properties(cli.inverted_element_exits_1 cli.version cli.help cli.no_subcommand_exits_2
   cli.unknown_option_exits_2 cli.missing_scenario_exits_2 cli.check_prints_summary PROPERTIES LABELS input)
+
+# ---- checkpoint / restart (two bodies in frictional contact, restart.toml) ------------------
+# interrupted by SIGKILL / SIGTERM / SIGINT, restarted from the last checkpoint: the final state
+# hash, history.csv and series.pvd are identical to an uninterrupted run
+foreach(sig KILL TERM INT)
+  add_test(NAME cli.restart_after_sig${sig}_is_bitwise
+           COMMAND ${cli_dir}/kill_restart.sh $<TARGET_FILE:fdem_cli> ${cli_dir}/restart.toml
+                   ${cli_out}/restart_${sig} ${sig})
+  set_tests_properties(cli.restart_after_sig${sig}_is_bitwise PROPERTIES LABELS input
+                       PASS_REGULAR_EXPRESSION "OK: bitwise identical")
+endforeach()
+# a checkpoint of another model, truncated, corrupt, foreign or missing -> exit 2 with a message
+add_test(NAME cli.restart_refused_exits_2
+         COMMAND ${cli_dir}/restart_refused.sh $<TARGET_FILE:fdem_cli> ${cli_dir}
+                 ${cli_out}/restart_refused)
+set_tests_properties(cli.restart_refused_exits_2 PROPERTIES LABELS input)
+
+# ---- failure diagnosis: exit 1, message names step, time, quantity and a remedy -------------
+add_test(NAME cli.energy_drift_exits_1
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=1
+                 "-DARGS=run;${cli_dir}/energy.toml;--out;${cli_out}/energy;--quiet"
+                 "-DREGEX=step [0-9]+ \\(t = [0-9.e+-]+ s\\): energy: total energy drifted by [0-9.e+-]+ J/m = [0-9.]+ % of the energy scale [0-9.e+-]+ J/m \\(limit 0.5 %, \\[checks\\] energy_tolerance = 0.005\\); the run is unstable or too coarse: reduce dt \\(now [0-9.e+-]+ s, stable limit [0-9.e+-]+ s\\).*the state at failure is in .*failure.vtu.*last good output frame: .*frame_[0-9]+.vtu"
+                 -P ${cli_dir}/expect_exit.cmake)
+add_test(NAME cli.penetration_exits_1
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=1
+                 "-DARGS=run;${cli_dir}/penetration.toml;--out;${cli_out}/penetration;--quiet"
+                 "-DREGEX=step [0-9]+ \\(t = [0-9.e+-]+ s\\): contact: [0-9]+ target node\\(s\\) passed through the contact layer into the body they touched \\(deepest d / layer = [0-9.e+-]+\\); the contact force is lost there; reduce dt \\(now [0-9.e+-]+ s, stable limit [0-9.e+-]+ s\\) or increase the contact penalty"
+                 -P ${cli_dir}/expect_exit.cmake)
+set_tests_properties(cli.energy_drift_exits_1 cli.penetration_exits_1 PROPERTIES LABELS input)
+
+# ---- determinism: the same input gives the same bits, run to run and for 1 or 2 threads -----
+add_test(NAME cli.determinism_threads
+         COMMAND ${cli_dir}/determinism.sh $<TARGET_FILE:fdem_cli> ${cli_dir}/determinism.toml
+                 ${cli_out}/determinism)
+# GOMP_SPINCOUNT: libgomp's default busy-wait (300000 spins per barrier) makes a 2-thread run
+# ~50x slower when the 2 cores are shared with other jobs (measured 62 s vs 1.1 s); the spin
+# count changes the waiting only, never the results.
+set_tests_properties(cli.determinism_threads PROPERTIES LABELS input ENVIRONMENT GOMP_SPINCOUNT=1000
+                     PASS_REGULAR_EXPRESSION "OK: 3 runs bitwise identical")

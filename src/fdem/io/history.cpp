@@ -1,10 +1,12 @@
 // CSV energy history (docs/output.md). One row per call, flushed at once so a killed run keeps
 // every complete row; values in %.17g so they read back bit-exact.
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 
 #include "fdem/error.hpp"
 #include "fdem/output.hpp"
+#include "io/atomic_file.hpp"
 
 namespace fdem {
 
@@ -20,6 +22,53 @@ HistoryWriter::HistoryWriter(const std::string& path) : path_(path) {
     file_ = std::fopen(path.c_str(), "w");
     if (file_ == nullptr || std::fputs(kHeader, file_) < 0 || std::fflush(file_) != 0) {
         throw SimulationError(0, 0.0, path,
+                              std::string("cannot write history file: ") + std::strerror(errno) +
+                                  " (check that the output directory exists and is writable)");
+    }
+}
+
+HistoryWriter::HistoryWriter(const std::string& path, int64_t resume_step) : path_(path) {
+    // keep the rows up to resume_step (the step column is the first field)
+    std::string kept = kHeader;
+    if (std::FILE* in = std::fopen(path.c_str(), "r")) {
+        char line[4096];
+        bool header = true;
+        while (std::fgets(line, sizeof line, in) != nullptr) {
+            if (header) {
+                header = false;
+                continue;
+            }
+            char* end = nullptr;
+            const long long step = std::strtoll(line, &end, 10);
+            if (end == line || *end != ',' || step > resume_step) break;
+            if (!has_reference_) {
+                // total is column 10 (state.hpp order), written with %.17g: reads back exact
+                const char* p = line;
+                for (int comma = 0; comma < 9 && p != nullptr; ++comma) {
+                    p = std::strchr(p, ',');
+                    if (p != nullptr) ++p;
+                }
+                if (p != nullptr) {
+                    total0_ = std::strtod(p, nullptr);
+                    has_reference_ = true;
+                }
+            }
+            kept += line;
+        }
+        std::fclose(in);
+    }
+    // rewrite atomically (a kill now keeps the old file), then append
+    try {
+        AtomicFile out(path);
+        out.write(kept);
+        out.commit();
+    } catch (const std::runtime_error& e) {
+        throw SimulationError(resume_step, 0.0, path,
+                              std::string("cannot rewrite history file: ") + e.what());
+    }
+    file_ = std::fopen(path.c_str(), "a");
+    if (file_ == nullptr) {
+        throw SimulationError(resume_step, 0.0, path,
                               std::string("cannot write history file: ") + std::strerror(errno) +
                                   " (check that the output directory exists and is writable)");
     }

@@ -30,8 +30,8 @@ using io::Fields;
 using io::SourceText;
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kTopKeys = {"simulation", "output", "material", "body",
-                                           "boundary",   "kick",   "damping",  "contact"};
+const std::vector<std::string> kTopKeys = {"simulation", "output",  "material", "body",  "boundary",
+                                           "kick",       "damping", "contact",  "checks"};
 const std::vector<std::string> kContactLawKeys = {"penalty",  "alpha",
                                                   "beta",     "length_scale",
                                                   "damping",  "damp_normal_only",
@@ -152,6 +152,7 @@ public:
 
         read_simulation(top, sc);
         read_output(root, sc);
+        read_checks(root, sc);
         read_materials(root, sc.model);
         read_bodies(root, sc.model);
         read_boundaries(root, sc.model);
@@ -219,6 +220,21 @@ private:
         o.interval = f.real("interval", 0.0, "s", Bounds::positive());
         o.dir = f.string("dir", std::string("out"));
         o.vtu = f.boolean("vtu", true);
+    }
+
+    // ---- [checks] ---------------------------------------------------------------------------
+    void read_checks(const toml::table& root, Scenario& sc) {
+        const toml::table* t = sub_table(src_, root, "checks");
+        if (!t) {
+            return;
+        }
+        Fields f(src_, *t, "[checks]", "checks", {"energy_tolerance", "penetration"});
+        CheckSettings& c = sc.run.checks;
+        c.energy_tolerance = f.real("energy_tolerance", 0.1, "", Bounds::non_negative());
+        const std::string p = f.choice("penetration", std::string("fail"), {"fail", "warn", "off"});
+        c.penetration = p == "fail"   ? PenetrationCheck::Fail
+                        : p == "warn" ? PenetrationCheck::Warn
+                                      : PenetrationCheck::Off;
     }
 
     // ---- [[material]] ----------------------------------------------------------------------

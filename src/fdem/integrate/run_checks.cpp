@@ -1,0 +1,74 @@
+// Run-level failure checks (run_checks.hpp).
+#include "integrate/run_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "fdem/error.hpp"
+
+namespace fdem {
+
+namespace {
+constexpr int64_t kEnergyCheckFirstStep = 16;  ///< first step at which the energy drift counts
+}  // namespace
+
+std::string check_run(const Model& /*m*/, const State& s, const RunSettings& run,
+                      EnergyMonitor& mon) {
+    const CheckSettings& c = run.checks;
+    std::string warning;
+
+    // penetration beyond the contact layer (spec §4.6 depth limit)
+    const ContactState& cs = s.contact;
+    if (c.penetration != PenetrationCheck::Off && cs.lost_inside > 0) {
+        const std::string what = fmt::format(
+            "{} target node(s) passed through the contact layer into the body they touched "
+            "(deepest d / layer = {:.3g}); the contact force is lost there",
+            cs.lost_inside, cs.max_depth_ratio);
+        const std::string remedy = fmt::format(
+            "reduce dt (now {:.3g} s, stable limit {:.3g} s) or increase the contact penalty "
+            "([contact] penalty); set [checks] penetration = \"warn\" to continue anyway",
+            s.dt, run.stable_dt);
+        if (c.penetration == PenetrationCheck::Fail) {
+            throw SimulationError(s.step, s.time, "contact", what + "; " + remedy);
+        }
+        warning = fmt::format("warning: step {} (t = {:.6g} s): contact: {}", s.step, s.time, what);
+    }
+
+    // energy balance (docs/theory.md §4): the total is conserved up to the time discretisation
+    const Energy& e = s.energy;
+    const Real total = e.total();
+    if (!mon.has_reference) {
+        mon.has_reference = true;
+        mon.e0 = total;
+    }
+    mon.scale = std::max({mon.scale, e.kinetic + e.strain + e.contact, std::abs(e.work_gravity),
+                          std::abs(e.work_external)});
+    const Real err = std::abs(total - mon.e0);
+    mon.max_error = std::max(mon.max_error, err);
+    if (!std::isfinite(total)) {
+        throw SimulationError(
+            s.step, s.time, "energy",
+            fmt::format("total energy is not finite; the run is unstable: reduce dt (now {:.3g} s, "
+                        "stable limit {:.3g} s)",
+                        s.dt, run.stable_dt));
+    }
+    // from kEnergyCheckFirstStep on: a support or kick acting from t = 0 has an O(dt) start-up
+    // error in its work that is large relative to the still tiny energy scale of the first
+    // steps (example 02: 65 % at step 2, 1 % from step 30 on)
+    if (c.energy_tolerance > 0 && s.step >= kEnergyCheckFirstStep && mon.scale > 0 &&
+        err > c.energy_tolerance * mon.scale) {
+        throw SimulationError(
+            s.step, s.time, "energy",
+            fmt::format("total energy drifted by {:.4g} J/m = {:.3g} % of the energy scale "
+                        "{:.4g} J/m (limit {:.3g} %, [checks] energy_tolerance = {}); the run is "
+                        "unstable or too coarse: reduce dt (now {:.3g} s, stable limit {:.3g} s) "
+                        "or add contact damping",
+                        err, 100.0 * err / mon.scale, mon.scale, 100.0 * c.energy_tolerance,
+                        c.energy_tolerance, s.dt, run.stable_dt));
+    }
+    return warning;
+}
+
+}  // namespace fdem

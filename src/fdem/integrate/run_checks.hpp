@@ -1,0 +1,25 @@
+// Run-level failure checks called by the CLI after every step ([checks] table of the scenario,
+// docs/scenario.md): contact penetration beyond the contact layer and energy-balance drift.
+// NaN/Inf and inverted elements are check_state() and step() (simulate.hpp).
+#pragma once
+
+#include <string>
+
+#include "fdem/model.hpp"
+#include "fdem/scenario.hpp"
+#include "fdem/state.hpp"
+#include "io/checkpoint.hpp"
+
+namespace fdem {
+
+/// Update the energy monitor with the energies of the step just done and apply the [checks]:
+///   * penetration: a target node left the contact layer inwards this step
+///     (ContactState::lost_inside > 0): "fail" throws, "warn" returns a warning text;
+///   * energy: |E_total - E_0| > energy_tolerance * scale, where E_0 is the total after the
+///     first step and scale the largest of kinetic + strain + contact, |gravity work| and
+///     |external work| seen so far (docs/theory.md §4), throws.
+/// Every SimulationError names step, time, the quantity and a remedy (the stable dt).
+/// Returns "" when there is nothing to warn about.
+std::string check_run(const Model& m, const State& s, const RunSettings& run, EnergyMonitor& mon);
+
+}  // namespace fdem

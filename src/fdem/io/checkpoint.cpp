@@ -1,0 +1,519 @@
+// Binary checkpoints (checkpoint.hpp): serialise State + run bookkeeping, refuse foreign files.
+#include "io/checkpoint.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+#include "fdem/error.hpp"
+#include "io/atomic_file.hpp"
+
+namespace fdem {
+
+namespace {
+
+constexpr char kMagic[8] = {'F', 'D', 'E', 'M', 'C', 'K', 'P', 'T'};
+constexpr uint32_t kEndianMarker = 0x01020304u;
+constexpr uint64_t kFnvOffset = 1469598103934665603ull;
+constexpr uint64_t kFnvPrime = 1099511628211ull;
+
+uint64_t fnv1a(uint64_t h, const void* data, size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < n; ++i) {
+        h ^= p[i];
+        h *= kFnvPrime;
+    }
+    return h;
+}
+
+// ---- sinks: the same field-by-field code feeds the file buffer and the model hash ----------
+
+/// Appends bytes to a buffer.
+struct Writer {
+    std::vector<unsigned char> buf;
+    void bytes(const void* p, size_t n) {
+        const auto* c = static_cast<const unsigned char*>(p);
+        buf.insert(buf.end(), c, c + n);
+    }
+};
+
+/// Feeds bytes to FNV-1a.
+struct Hasher {
+    uint64_t h = kFnvOffset;
+    void bytes(const void* p, size_t n) { h = fnv1a(h, p, n); }
+};
+
+template <class Sink, class T>
+void put(Sink& o, const T& v) {
+    if constexpr (std::is_same_v<T, bool>) {
+        const uint8_t b = v ? 1 : 0;
+        o.bytes(&b, 1);
+    } else if constexpr (std::is_enum_v<T>) {
+        const int32_t e = static_cast<int32_t>(v);
+        o.bytes(&e, sizeof e);
+    } else if constexpr (std::is_arithmetic_v<T>) {
+        o.bytes(&v, sizeof v);
+    } else if constexpr (std::is_same_v<T, Vec2>) {
+        put(o, v.x);
+        put(o, v.y);
+    } else if constexpr (std::is_same_v<T, Mat2>) {
+        put(o, v.xx);
+        put(o, v.xy);
+        put(o, v.yx);
+        put(o, v.yy);
+    } else if constexpr (std::is_same_v<T, std::string>) {
+        put(o, static_cast<uint64_t>(v.size()));
+        o.bytes(v.data(), v.size());
+    } else {
+        static_assert(sizeof(T) == 0, "no serialisation for this type");
+    }
+}
+
+template <class Sink, class T, size_t N>
+void put(Sink& o, const std::array<T, N>& a) {
+    for (const T& e : a)
+        put(o, e);
+}
+
+template <class Sink, class T>
+void put(Sink& o, const std::vector<T>& a) {
+    put(o, static_cast<uint64_t>(a.size()));
+    for (const T& e : a)
+        put(o, e);
+}
+
+template <class Sink>
+void put(Sink& o, const PairHistory& h) {
+    put(o, h.s);
+    put(o, h.d_max);
+    put(o, h.d_prev);
+    put(o, h.stored);
+    put(o, h.depth_ratio);
+    put(o, h.unloading);
+}
+
+template <class Sink>
+void put(Sink& o, const ActiveContact& a) {
+    put(o, a.node);
+    put(o, a.body);
+    put(o, a.h);
+}
+
+template <class Sink>
+void put(Sink& o, const ContactParams& p) {
+    put(o, p.penalty);
+    put(o, p.alpha);
+    put(o, p.beta);
+    put(o, p.length_scale);
+    put(o, p.damping);
+    put(o, p.damp_normal_only);
+    put(o, p.friction);
+    put(o, p.tangential_penalty);
+    put(o, p.unloading);
+}
+
+template <class Sink>
+void put(Sink& o, const Energy& e) {
+    put(o, e.time);
+    put(o, e.kinetic);
+    put(o, e.strain);
+    put(o, e.contact);
+    put(o, e.work_gravity);
+    put(o, e.work_external);
+    put(o, e.dissipated_viscous);
+    put(o, e.dissipated_contact);
+}
+
+// ---- the payload: one function per direction, fields in the same order --------------------
+
+template <class Sink>
+void put_state(Sink& o, const State& s) {
+    put(o, s.step);
+    put(o, s.time);
+    put(o, s.dt);
+    put(o, s.x);
+    put(o, s.v);
+    put(o, s.f);
+    put(o, s.f_contact);
+    put(o, s.energy);
+    put(o, s.next_kick);
+    // scratch_bc_v, scratch_sums: rewritten before being read in every step (not saved)
+
+    const ContactState& c = s.contact;
+    put(o, c.active_contacts);
+    put(o, c.deep_penetrations);
+    put(o, c.lost_inside);
+    put(o, c.max_depth_ratio);
+    put(o, c.total_deep_penetrations);
+    put(o, c.total_lost_inside);
+    put(o, c.max_depth_ratio_ever);
+    put(o, c.rebuilds);
+    put(o, c.skin_used);
+    put(o, c.need_rebuild);
+    put(o, c.cand_node);
+    put(o, c.cand_body);
+    put(o, c.cand_begin);
+    put(o, c.cand_tri);
+    // broad-phase grid: kept although it is rebuilt with the candidates, so that a future
+    // incremental broad phase cannot silently lose information across a restart
+    put(o, c.tri_center);
+    put(o, c.tri_radius);
+    put(o, c.tri_cell);
+    put(o, c.cell_start);
+    put(o, c.cell_items);
+    put(o, c.query);
+    put(o, c.active);
+    put(o, c.active_next);
+    put(o, c.xv);
+    put(o, c.vv);
+}
+
+template <class Sink>
+void put_progress(Sink& o, const RunProgress& p) {
+    put(o, p.frame);
+    put(o, p.next_output);
+    put(o, p.energy.has_reference);
+    put(o, p.energy.e0);
+    put(o, p.energy.scale);
+    put(o, p.energy.max_error);
+    put(o, static_cast<uint64_t>(p.frames.size()));
+    for (const auto& [t, file] : p.frames) {
+        put(o, t);
+        put(o, file);
+    }
+}
+
+/// Bounds-checked reader over the file bytes; every failure is an InputError naming the file.
+class Reader {
+public:
+    Reader(const std::string& path, const std::vector<unsigned char>& buf, size_t end)
+        : path_(path), buf_(buf), end_(end) {}
+
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError({path_, 0, 0}, "--restart",
+                         fmt::format("checkpoint '{}' is unusable: {}", path_, what));
+    }
+
+    void bytes(void* p, size_t n) {
+        if (n > end_ - pos_) fail("the file is truncated");
+        std::memcpy(p, buf_.data() + pos_, n);
+        pos_ += n;
+    }
+    size_t remaining() const { return end_ - pos_; }
+
+    template <class T>
+    void get(T& v) {
+        if constexpr (std::is_same_v<T, bool>) {
+            uint8_t b = 0;
+            bytes(&b, 1);
+            if (b > 1) fail("a flag is neither 0 nor 1 (corrupt file)");
+            v = b != 0;
+        } else if constexpr (std::is_arithmetic_v<T>) {
+            bytes(&v, sizeof v);
+        } else if constexpr (std::is_same_v<T, Vec2>) {
+            get(v.x);
+            get(v.y);
+        } else if constexpr (std::is_same_v<T, std::string>) {
+            const uint64_t n = count(1);
+            v.resize(n);
+            bytes(v.data(), n);
+        } else if constexpr (std::is_same_v<T, PairHistory>) {
+            get(v.s);
+            get(v.d_max);
+            get(v.d_prev);
+            get(v.stored);
+            get(v.depth_ratio);
+            get(v.unloading);
+        } else if constexpr (std::is_same_v<T, ActiveContact>) {
+            get(v.node);
+            get(v.body);
+            get(v.h);
+        } else if constexpr (std::is_same_v<T, Energy>) {
+            get(v.time);
+            get(v.kinetic);
+            get(v.strain);
+            get(v.contact);
+            get(v.work_gravity);
+            get(v.work_external);
+            get(v.dissipated_viscous);
+            get(v.dissipated_contact);
+        } else {
+            static_assert(sizeof(T) == 0, "no deserialisation for this type");
+        }
+    }
+
+    /// An element count, checked against the bytes left (min_size bytes per element).
+    uint64_t count(size_t min_size) {
+        uint64_t n = 0;
+        get(n);
+        if (min_size > 0 && n > remaining() / min_size) fail("an array length is corrupt");
+        return n;
+    }
+
+    /// A vector of any length (assign keeps the capacity reserved by make_state()).
+    template <class T>
+    void get(std::vector<T>& a) {
+        const uint64_t n = count(1);
+        a.resize(n);
+        for (T& e : a)
+            get(e);
+    }
+
+    /// A vector whose length must equal expected (per-node arrays).
+    template <class T>
+    void get_sized(std::vector<T>& a, size_t expected, const char* name) {
+        const uint64_t n = count(1);
+        if (n != expected) {
+            fail(fmt::format("'{}' has {} entries, the model has {}", name, n, expected));
+        }
+        a.resize(n);
+        for (T& e : a)
+            get(e);
+    }
+
+private:
+    std::string path_;
+    const std::vector<unsigned char>& buf_;
+    size_t end_;
+    size_t pos_ = 0;
+};
+
+}  // namespace
+
+uint64_t model_hash(const Model& m, Real dt) {
+    Hasher h;
+    put(h, dt);
+    put(h, m.node_x0);
+    put(h, m.node_v0);
+    put(h, m.node_mass);
+    put(h, m.node_inv_mass);
+    put(h, m.node_body);
+    put(h, m.tri_nodes);
+    put(h, m.tri_body);
+    put(h, m.tri_material);
+    put(h, m.tri_dm_inv);
+    put(h, m.tri_area0);
+    put(h, m.tri_eta);
+    put(h, static_cast<uint64_t>(m.bodies.size()));
+    for (const Body& b : m.bodies) {
+        put(h, b.group);
+        put(h, b.material);
+        put(h, b.fixed);
+        put(h, b.node_begin);
+        put(h, b.node_end);
+        put(h, b.tri_begin);
+        put(h, b.tri_end);
+    }
+    put(h, static_cast<uint64_t>(m.materials.size()));
+    for (const Material& mat : m.materials) {
+        put(h, mat.density);
+        put(h, mat.youngs_modulus);
+        put(h, mat.poisson_ratio);
+        put(h, mat.plane);
+        put(h, mat.viscosity);
+        put(h, mat.damping_ratio);
+        put(h, mat.lambda);
+        put(h, mat.mu);
+    }
+    put(h, static_cast<uint64_t>(m.bcs.size()));
+    for (const BoundaryCondition& bc : m.bcs) {
+        put(h, bc.nodes);
+        put(h, bc.has_x);
+        put(h, bc.has_y);
+        put(h, bc.velocity);
+        put(h, bc.start);
+        put(h, bc.end);
+    }
+    put(h, static_cast<uint64_t>(m.kicks.size()));
+    for (const VelocityKick& k : m.kicks) {
+        put(h, k.group);
+        put(h, k.time);
+        put(h, k.has_x);
+        put(h, k.has_y);
+        put(h, k.velocity);
+    }
+    put(h, m.mass_damping.coefficient);
+    put(h, m.mass_damping.until);
+    put(h, m.gravity);
+    const ContactModel& c = m.contact;
+    put(h, c.algorithm);
+    put(h, c.params);
+    put(h, static_cast<uint64_t>(c.resolved.size()));
+    for (const ContactParams& p : c.resolved)
+        put(h, p);
+    put(h, c.buffer);
+    put(h, c.two_way);
+    put(h, c.m_bar);
+    put(h, c.deep_ratio_limit);
+    put(h, c.node_dist);
+    put(h, c.virt_parent);
+    put(h, c.virt_weight);
+    put(h, c.sub_tri);
+    put(h, c.sub_body);
+    return h.h;
+}
+
+uint64_t state_hash(const State& s) {
+    Hasher h;
+    put(h, s.x);
+    put(h, s.v);
+    put(h, s.energy);
+    return h.h;
+}
+
+void write_checkpoint(const std::string& path, const Model& m, const State& s,
+                      const RunProgress& progress) {
+    Writer w;
+    w.bytes(kMagic, sizeof kMagic);
+    put(w, kCheckpointFormat);
+    put(w, kEndianMarker);
+    put(w, std::string(FDEM_VERSION));
+    put(w, model_hash(m, s.dt));
+    put_state(w, s);
+    put_progress(w, progress);
+    put(w, fnv1a(kFnvOffset, w.buf.data(), w.buf.size()));
+    try {
+        AtomicFile f(path);
+        f.write(w.buf.data(), w.buf.size());
+        f.commit();
+    } catch (const std::runtime_error& e) {
+        throw SimulationError(s.step, s.time, path,
+                              fmt::format("cannot write checkpoint: {}", e.what()));
+    }
+}
+
+void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgress& progress) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw InputError(
+            {path, 0, 0}, "--restart",
+            fmt::format("cannot open checkpoint '{}': {}", path, std::strerror(errno)));
+    }
+    const std::vector<unsigned char> buf((std::istreambuf_iterator<char>(in)),
+                                         std::istreambuf_iterator<char>());
+    constexpr size_t kTrailer = sizeof(uint64_t);
+    Reader r(path, buf, buf.size() >= kTrailer ? buf.size() - kTrailer : 0);
+
+    // header: magic, format, byte order, version, model
+    char magic[sizeof kMagic] = {};
+    if (buf.size() < sizeof kMagic + kTrailer) r.fail("not an fdem checkpoint (file too short)");
+    r.bytes(magic, sizeof magic);
+    if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) {
+        r.fail("not an fdem checkpoint (wrong magic bytes)");
+    }
+    uint64_t stored_sum = 0;
+    std::memcpy(&stored_sum, buf.data() + buf.size() - kTrailer, kTrailer);
+    if (stored_sum != fnv1a(kFnvOffset, buf.data(), buf.size() - kTrailer)) {
+        r.fail("checksum mismatch (the file is truncated or corrupt)");
+    }
+    uint32_t format = 0, endian = 0;
+    r.get(format);
+    if (format != kCheckpointFormat) {
+        r.fail(fmt::format("checkpoint format {} is not supported by this fdem (format {})", format,
+                           kCheckpointFormat));
+    }
+    r.get(endian);
+    if (endian != kEndianMarker) r.fail("written on a machine with another byte order");
+    std::string version;
+    r.get(version);
+    if (version != FDEM_VERSION) {
+        r.fail(fmt::format("written by fdem {}, this is fdem {}; rerun from t = 0", version,
+                           FDEM_VERSION));
+    }
+    uint64_t hash = 0;
+    r.get(hash);
+    if (hash != model_hash(m, s.dt)) {
+        r.fail(
+            fmt::format("it was written for a different model or time step (model hash "
+                        "{:016x}, this scenario gives {:016x}): the scenario, a mesh or dt "
+                        "changed since; rerun from t = 0 or restore the original scenario",
+                        hash, model_hash(m, s.dt)));
+    }
+
+    // state
+    const size_t nn = static_cast<size_t>(m.num_nodes());
+    r.get(s.step);
+    r.get(s.time);
+    Real dt = 0;
+    r.get(dt);
+    if (dt != s.dt) r.fail(fmt::format("its dt = {} differs from the scenario's {}", dt, s.dt));
+    r.get_sized(s.x, nn, "x");
+    r.get_sized(s.v, nn, "v");
+    r.get_sized(s.f, nn, "f");
+    r.get_sized(s.f_contact, nn, "f_contact");
+    r.get(s.energy);
+    r.get(s.next_kick);
+    if (s.step < 0 || s.next_kick < 0 || s.next_kick > static_cast<int32_t>(m.kicks.size())) {
+        r.fail("step or kick counter out of range (corrupt file)");
+    }
+
+    ContactState& c = s.contact;
+    r.get(c.active_contacts);
+    r.get(c.deep_penetrations);
+    r.get(c.lost_inside);
+    r.get(c.max_depth_ratio);
+    r.get(c.total_deep_penetrations);
+    r.get(c.total_lost_inside);
+    r.get(c.max_depth_ratio_ever);
+    r.get(c.rebuilds);
+    r.get(c.skin_used);
+    r.get(c.need_rebuild);
+    r.get(c.cand_node);
+    r.get(c.cand_body);
+    r.get(c.cand_begin);
+    r.get(c.cand_tri);
+    r.get(c.tri_center);
+    r.get(c.tri_radius);
+    r.get(c.tri_cell);
+    r.get(c.cell_start);
+    r.get(c.cell_items);
+    r.get(c.query);
+    r.get(c.active);
+    r.get(c.active_next);
+    r.get(c.xv);
+    r.get(c.vv);
+
+    // ids read back must index the model (a corrupt file must not crash the contact code)
+    const int32_t nb = m.num_bodies(), ncn = m.contact.num_contact_nodes();
+    const int32_t nsub = m.contact.num_sub_tris();
+    const auto bad_id = [](int32_t id, int32_t n) { return id < 0 || id >= n; };
+    bool ok = c.cand_node.size() == c.cand_body.size() &&
+              (c.cand_node.empty() ? c.cand_begin.size() <= 1
+                                   : c.cand_begin.size() == c.cand_node.size() + 1) &&
+              c.xv.size() == static_cast<size_t>(m.contact.num_virtual()) &&
+              c.vv.size() == c.xv.size();
+    for (size_t p = 0; ok && p < c.cand_node.size(); ++p) {
+        ok = !bad_id(c.cand_node[p], ncn) && !bad_id(c.cand_body[p], nb);
+    }
+    for (size_t p = 0; ok && p < c.cand_begin.size(); ++p) {
+        ok = c.cand_begin[p] >= 0 && static_cast<size_t>(c.cand_begin[p]) <= c.cand_tri.size() &&
+             (p == 0 || c.cand_begin[p] >= c.cand_begin[p - 1]);
+    }
+    for (size_t k = 0; ok && k < c.cand_tri.size(); ++k)
+        ok = !bad_id(c.cand_tri[k], nsub);
+    for (size_t k = 0; ok && k < c.active.size(); ++k) {
+        ok = !bad_id(c.active[k].node, static_cast<int32_t>(nn)) && !bad_id(c.active[k].body, nb);
+    }
+    if (!ok) r.fail("contact candidate or history ids out of range (corrupt file)");
+
+    // run bookkeeping
+    r.get(progress.frame);
+    r.get(progress.next_output);
+    r.get(progress.energy.has_reference);
+    r.get(progress.energy.e0);
+    r.get(progress.energy.scale);
+    r.get(progress.energy.max_error);
+    const uint64_t nf = r.count(sizeof(Real) + sizeof(uint64_t));
+    progress.frames.resize(nf);
+    for (auto& [t, file] : progress.frames) {
+        r.get(t);
+        r.get(file);
+    }
+    if (r.remaining() != 0) r.fail("unexpected bytes after the payload");
+}
+
+}  // namespace fdem

@@ -1,0 +1,63 @@
+// Binary checkpoints of a run: the complete State (including the contact pair history and
+// candidate lists) plus the CLI's run bookkeeping, so a restarted run continues bit for bit.
+//
+// File layout (native little-endian; docs/output.md "Checkpoints"):
+//   "FDEMCKPT" | u32 format version | u32 endian marker 0x01020304 | string fdem version |
+//   u64 model hash | payload ... | u64 FNV-1a hash of every byte before it
+// Strings and arrays are a u64 count followed by the elements; structs are written field by
+// field (never raw, so padding bytes never reach the file and equal states give equal files).
+//
+// What is saved: every State field that carries information from one step to the next: step,
+// time, dt, x, v, f, f_contact, energy, next_kick and the whole ContactState. scratch_bc_v and
+// scratch_sums are rewritten before they are read in every step and are not saved.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fdem/model.hpp"
+#include "fdem/state.hpp"
+
+namespace fdem {
+
+/// Version of the checkpoint layout; bump it whenever the payload changes.
+constexpr uint32_t kCheckpointFormat = 1;
+
+/// Running energy-balance monitor (the [checks] energy test of the CLI), kept in checkpoints so
+/// a restarted run measures the drift from the same E_0.
+struct EnergyMonitor {
+    bool has_reference = false;
+    Real e0 = 0;         ///< total energy after the first step [J/m]
+    Real scale = 0;      ///< largest energy scale seen so far [J/m]
+    Real max_error = 0;  ///< largest |E_total - E_0| so far [J/m]
+};
+
+/// CLI bookkeeping that must survive a restart so output continues where it stopped.
+struct RunProgress {
+    int64_t frame = 0;     ///< number of output frames written
+    Real next_output = 0;  ///< simulated time of the next output frame [s]
+    EnergyMonitor energy;
+    std::vector<std::pair<Real, std::string>> frames;  ///< (time, file) of the PVD series
+};
+
+/// Hash of everything in the built Model that affects the physics (geometry, masses,
+/// materials, boundary conditions, kicks, damping, gravity, contact parameters and topology)
+/// and of dt. End time and output settings are not included: a restart may change them.
+uint64_t model_hash(const Model& m, Real dt);
+
+/// FNV-1a over the bytes of x, v and the energies: equal hashes mean bitwise equal states.
+uint64_t state_hash(const State& s);
+
+/// Write a checkpoint atomically (temporary file, then rename). Throws SimulationError naming
+/// the file if it cannot be written.
+void write_checkpoint(const std::string& path, const Model& m, const State& s,
+                      const RunProgress& progress);
+
+/// Read a checkpoint into s (which must come from make_state(m, dt)) and progress. Throws
+/// InputError (key "--restart") if the file is missing, truncated, corrupt, of another format
+/// or fdem version, or was written for a different model or dt.
+void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgress& progress);
+
+}  // namespace fdem

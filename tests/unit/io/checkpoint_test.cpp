@@ -1,0 +1,245 @@
+// Checkpoints (io/checkpoint.hpp): a restart continues bit for bit, equal states give equal
+// files, and foreign files (other model, format, version, corrupt) are refused with a message.
+#include "io/checkpoint.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "fdem/error.hpp"
+#include "fdem/scenario.hpp"
+#include "fdem/simulate.hpp"
+
+namespace fdem {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// Two bodies in frictional contact (tests/cli/restart.toml in small): a block thrown at
+// (1, -1) m/s onto a fixed base lands after ~7 ms and slides under friction mu = 0.4.
+const char* kScene = R"(
+[simulation]
+end_time = 0.02
+dt = "auto"
+dt_fraction = 0.3
+gravity = [0.0, -9.81]
+[[material]]
+name = "rubber"
+density = 1000.0
+youngs_modulus = 1.0e7
+poisson_ratio = 0.2
+damping_ratio = 0.2
+[[body]]
+name = "base"
+mesh = "block_on_base.geo"
+mesh_size = 0.1
+group = "base"
+material = "rubber"
+fixed = true
+[[body]]
+name = "block"
+mesh = "block_on_base.geo"
+mesh_size = 0.1
+group = "block"
+material = "rubber"
+velocity = [1.0, -1.0]
+[contact]
+algorithm = "smooth"
+friction = 0.4
+damping = 2.0e4
+damp_normal_only = true
+)";
+
+std::string temp_path(const std::string& name) {
+    return (fs::temp_directory_path() / ("fdem_checkpoint_test_" + name)).string();
+}
+
+std::vector<unsigned char> read_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const std::string& path, const std::vector<unsigned char>& b) {
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+}
+
+/// FNV-1a, as the checkpoint trailer (to forge files with a valid checksum).
+uint64_t fnv(const unsigned char* p, size_t n) {
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < n; ++i) {
+        h ^= p[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+void fix_trailer(std::vector<unsigned char>& b) {
+    const uint64_t h = fnv(b.data(), b.size() - 8);
+    std::memcpy(b.data() + b.size() - 8, &h, 8);
+}
+
+bool same_bits(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec2)) == 0;
+}
+
+class CheckpointTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        sc_ = new Scenario(load_scenario_from_string(kScene, "scene.toml", FDEM_TEST_DATA_DIR));
+    }
+    static void TearDownTestSuite() {
+        delete sc_;
+        sc_ = nullptr;
+    }
+    static const Model& model() { return sc_->model; }
+    static Real dt() { return sc_->run.dt; }
+    static Scenario* sc_;
+};
+Scenario* CheckpointTest::sc_ = nullptr;
+
+// The restart must reproduce the uninterrupted run exactly, with the friction springs and the
+// contact candidates of the checkpoint step carried over.
+TEST_F(CheckpointTest, RestartIsBitwiseIdenticalWithFrictionalContact) {
+    const Model& m = model();
+    const int64_t n_total = 500, n_ckpt = 300;  // landing at step ~200 (t ~ 7 ms, dt ~ 33 us)
+
+    State ref = make_state(m, dt());
+    while (ref.step < n_total)
+        step(m, ref);
+
+    State a = make_state(m, dt());
+    while (a.step < n_ckpt)
+        step(m, a);
+    ASSERT_GT(a.contact.active_contacts, 0) << "the checkpoint must be taken during contact";
+    bool sliding = false;
+    for (const ActiveContact& c : a.contact.active)
+        sliding = sliding || c.h.s != 0;
+    ASSERT_TRUE(sliding) << "friction springs must carry history across the checkpoint";
+
+    RunProgress p;
+    p.frame = 7;
+    p.next_output = 0.125;
+    p.energy = {true, 1.5, 2.5, 0.25};
+    p.frames = {{0.0, "frame_000000.vtu"}, {0.01, "frame_000001.vtu"}};
+    const std::string path = temp_path("restart.fdck");
+    write_checkpoint(path, m, a, p);
+
+    State b = make_state(m, dt());
+    RunProgress q;
+    read_checkpoint(path, m, b, q);
+    EXPECT_EQ(b.step, n_ckpt);
+    EXPECT_EQ(q.frame, 7);
+    EXPECT_EQ(q.next_output, 0.125);
+    EXPECT_EQ(q.energy.e0, 1.5);
+    EXPECT_EQ(q.energy.max_error, 0.25);
+    EXPECT_EQ(q.frames, p.frames);
+    while (b.step < n_total)
+        step(m, b);
+
+    EXPECT_TRUE(same_bits(ref.x, b.x));
+    EXPECT_TRUE(same_bits(ref.v, b.v));
+    EXPECT_TRUE(same_bits(ref.f, b.f));
+    EXPECT_EQ(std::memcmp(&ref.energy, &b.energy, sizeof(Energy)), 0);
+    EXPECT_EQ(state_hash(ref), state_hash(b));
+    EXPECT_EQ(ref.time, b.time);
+    EXPECT_EQ(ref.contact.active_contacts, b.contact.active_contacts);
+    fs::remove(path);
+}
+
+// No padding or uninitialised bytes reach the file: the same state gives the same bytes.
+TEST_F(CheckpointTest, EqualStatesGiveEqualFiles) {
+    const Model& m = model();
+    State s = make_state(m, dt());
+    for (int i = 0; i < 250; ++i)
+        step(m, s);
+    const std::string p1 = temp_path("eq1.fdck"), p2 = temp_path("eq2.fdck");
+    write_checkpoint(p1, m, s, {});
+    State t = make_state(m, dt());
+    RunProgress q;
+    read_checkpoint(p1, m, t, q);
+    write_checkpoint(p2, m, t, q);
+    EXPECT_EQ(read_bytes(p1), read_bytes(p2));
+    fs::remove(p1);
+    fs::remove(p2);
+}
+
+std::string restart_error(const std::string& path, const Model& m, Real dt) {
+    State s = make_state(m, dt);
+    RunProgress p;
+    try {
+        read_checkpoint(path, m, s, p);
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.key(), "--restart");
+        return e.what();
+    }
+    return "no error";
+}
+
+TEST_F(CheckpointTest, RefusesAnotherTimeStep) {
+    const Model& m = model();
+    const std::string path = temp_path("dt.fdck");
+    write_checkpoint(path, m, make_state(m, dt()), {});
+    EXPECT_THAT(restart_error(path, m, 0.5 * dt()),
+                HasSubstr("it was written for a different model or time step"));
+    fs::remove(path);
+}
+
+TEST_F(CheckpointTest, RefusesAnotherModel) {
+    const std::string path = temp_path("model.fdck");
+    write_checkpoint(path, model(), make_state(model(), dt()), {});
+    Model other = model();
+    other.gravity = {0.0, -9.80};
+    EXPECT_THAT(restart_error(path, other, dt()),
+                HasSubstr("it was written for a different model or time step (model hash"));
+    fs::remove(path);
+}
+
+// Layout: 8 magic bytes, u32 format, u32 endian marker, u64 length + version string.
+TEST_F(CheckpointTest, RefusesAnotherFormatAndVersion) {
+    const std::string path = temp_path("version.fdck");
+    write_checkpoint(path, model(), make_state(model(), dt()), {});
+    const std::vector<unsigned char> good = read_bytes(path);
+
+    std::vector<unsigned char> b = good;
+    const uint32_t format = kCheckpointFormat + 1;
+    std::memcpy(b.data() + 8, &format, 4);
+    fix_trailer(b);
+    write_bytes(path, b);
+    EXPECT_THAT(restart_error(path, model(), dt()),
+                HasSubstr(fmt::format("checkpoint format {} is not supported by this fdem "
+                                      "(format {})",
+                                      kCheckpointFormat + 1, kCheckpointFormat)));
+
+    b = good;
+    b[24] = '9';  // first character of the version string
+    fix_trailer(b);
+    write_bytes(path, b);
+    EXPECT_THAT(restart_error(path, model(), dt()),
+                HasSubstr(std::string("this is fdem ") + FDEM_VERSION + "; rerun from t = 0"));
+    fs::remove(path);
+}
+
+// Every truncation point is refused with a message, never a crash.
+TEST_F(CheckpointTest, EveryTruncationIsRefused) {
+    const std::string path = temp_path("trunc.fdck");
+    write_checkpoint(path, model(), make_state(model(), dt()), {});
+    const std::vector<unsigned char> good = read_bytes(path);
+    for (size_t n = 0; n < good.size(); n += 1 + n / 8) {
+        write_bytes(path, std::vector<unsigned char>(good.begin(), good.begin() + n));
+        EXPECT_THAT(restart_error(path, model(), dt()), HasSubstr("is unusable")) << n;
+    }
+    fs::remove(path);
+}
+
+}  // namespace
+}  // namespace fdem
