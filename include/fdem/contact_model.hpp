@@ -24,6 +24,14 @@ enum class UnloadingLaw {
     Literal,     ///< paper eq. 12 as written: g = d^alpha loading, d^beta unloading
 };
 
+/// Scale factor of the force on a target node (paper eq. 19 and its alternative,
+/// docs/theory.md §6.9).
+enum class ContactScaling {
+    Mass,    ///< paper eq. 19: f = (m_j / mbar) (...), mbar = smallest element mass (default)
+    Length,  ///< f = (l_j / lbar) (...): l_j = half the lengths of node j's boundary edges,
+             ///< lbar = smallest boundary edge; a uniform pressure gives a uniform depth
+};
+
 /// Contact law parameters (paper eqs. 5-20). SI units; defaults follow spec §4.5.
 /// The force function is g(d) = 2 l (d/l)^alpha while loading (docs/theory.md eq. 6.6), so that
 /// alpha = 1 gives the paper's default potential phi = d^2 and a force 2 k_n d.
@@ -72,6 +80,7 @@ struct ContactModel {
     bool two_way = true;
     Real m_bar = 0;  ///< smallest element mass [kg/m] over all bodies incl. fixed ones (eq. 19)
     Real deep_ratio_limit = 0.5;  ///< d / (largest nodal distance of the triangle) counted as deep
+    ContactScaling scaling = ContactScaling::Mass;  ///< target force scale (eq. 19 or length)
 
     // ---- derived (build_contact_topology) -------------------------------------------------
     /// pair_params resolved: num_materials^2 entries, every default filled in. Indexed by
@@ -79,6 +88,14 @@ struct ContactModel {
     std::vector<ContactParams> resolved;
     int32_t num_materials = 0;
     Real h_min = 0;  ///< smallest element altitude of the mesh [m]
+
+    /// Scale of the force on each real node as a target: m_j / m_bar (ContactScaling::Mass) or
+    /// l_j / l_bar (Length); 0 for nodes that are not on a boundary (Length only).
+    std::vector<Real> node_scale;
+    Real l_bar = 0;  ///< smallest boundary edge over all bodies [m] (ContactScaling::Length)
+    /// Mass of the single-DOF bound of the stable dt: min over movable boundary nodes of
+    /// m_j / node_scale[j] (= m_bar for ContactScaling::Mass, docs/theory.md §6.9)
+    Real m_dt = 0;
 
     int32_t num_real_nodes = 0;                      ///< = Model::num_nodes()
     std::vector<std::array<NodeId, 3>> virt_parent;  ///< parents of each virtual node

@@ -165,7 +165,7 @@ void evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const 
     // the law (eqs. 5-19) with v_r = v_c - v_j, v_c = sum N_i v_i (eq. 13)
     const BodyId bt = m.node_body[j];
     const ContactParams& p = pair_parameters(cm, m.bodies[c].material, m.bodies[bt].material);
-    const Real scale = m.node_mass[j] / cm.m_bar;
+    const Real scale = cm.node_scale[j];  // m_j / mbar (eq. 19) or l_j / lbar
     Vec2 vc;
     for (int k = 0; k < 3; ++k)
         vc += fs.N[k] * cpos(cm, v, vv, q[k]);
@@ -264,7 +264,7 @@ void add_contact_forces(const Model& m, State& s) {
         const BodyId bt = m.node_body[a.node];
         const ContactParams& p =
             pair_parameters(cm, m.bodies[a.body].material, m.bodies[bt].material);
-        const Real scale = m.node_mass[a.node] / cm.m_bar;
+        const Real scale = cm.node_scale[a.node];
         bool lost = false;
         if (a.h.depth_ratio > kLostCheckRatio && inside_body(cm, a.body, x, x[a.node])) {
             lost = true;  // left the boundary layer inwards: penetration too deep (spec §4.6)
@@ -379,11 +379,11 @@ Real contact_stable_dt(const Model& m) {
         // omega_c = sqrt(g' k_n / mbar) * sqrt(2): the reaction on a contactor node of similar
         // mass doubles the effective stiffness (spec §3.4); damping lowers the bound
         const Real k = gp * p.penalty * grad2;
-        const Real omega = std::sqrt(2.0 * k / cm.m_bar);
-        const Real zeta = p.damping / (2.0 * std::sqrt(k * cm.m_bar));
+        const Real omega = std::sqrt(2.0 * k / cm.m_dt);
+        const Real zeta = p.damping / (2.0 * std::sqrt(k * cm.m_dt));
         dt = std::min(dt, 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta));
         if (p.friction > 0 && p.tangential_penalty > 0) {
-            dt = std::min(dt, 2.0 / std::sqrt(2.0 * p.tangential_penalty / cm.m_bar));
+            dt = std::min(dt, 2.0 / std::sqrt(2.0 * p.tangential_penalty / cm.m_dt));
         }
     }
     return dt;

@@ -353,6 +353,34 @@ void build_contact_topology(Model& m) {
         tb.body(b);
     cm.node_dist.resize(static_cast<size_t>(cm.num_contact_nodes()), 0.0);
 
+    // scale of the force on a target node (docs/theory.md §6.9): m_j / mbar (eq. 19) or
+    // l_j / lbar with l_j = half the lengths of the node's boundary edges (its tributary
+    // length), lbar = the smallest boundary edge; m_dt is the mass of the stable-dt bound
+    cm.node_scale.assign(static_cast<size_t>(m.num_nodes()), 0.0);
+    cm.l_bar = 0;
+    cm.m_dt = cm.m_bar;
+    if (cm.scaling == ContactScaling::Mass) {
+        for (NodeId i = 0; i < m.num_nodes(); ++i)
+            cm.node_scale[i] = m.node_mass[i] / cm.m_bar;
+    } else {
+        Real l_bar = std::numeric_limits<Real>::infinity();
+        for (const auto& e : cm.boundary_edges) {
+            const Real len = norm(m.node_x0[e[1]] - m.node_x0[e[0]]);
+            l_bar = std::min(l_bar, len);
+            cm.node_scale[e[0]] += 0.5 * len;
+            cm.node_scale[e[1]] += 0.5 * len;
+        }
+        if (!(l_bar > 0) || !std::isfinite(l_bar)) l_bar = 0;
+        cm.l_bar = l_bar;
+        Real m_dt = std::numeric_limits<Real>::infinity();
+        for (NodeId i = 0; i < m.num_nodes(); ++i) {
+            if (cm.node_scale[i] == 0) continue;
+            cm.node_scale[i] /= l_bar;
+            if (m.node_inv_mass[i] > 0) m_dt = std::min(m_dt, m.node_mass[i] / cm.node_scale[i]);
+        }
+        cm.m_dt = std::isfinite(m_dt) ? m_dt : cm.m_bar;
+    }
+
     // baseline B: phi_B per contactor sub-triangle (spec §1.3, docs/theory.md §7.4)
     if (cm.algorithm == ContactAlgorithm::LegacyBoundary) {
         cm.sub_legacy_b = build_legacy_boundary_field(m).sub;

@@ -556,7 +556,7 @@ private:
             m.contact.algorithm = ContactAlgorithm::None;
             return;
         }
-        std::vector<std::string> keys = {"algorithm", "buffer", "two_way", "pair"};
+        std::vector<std::string> keys = {"algorithm", "buffer", "two_way", "scaling", "pair"};
         keys.insert(keys.end(), kContactLawKeys.begin(), kContactLawKeys.end());
         Fields f(src_, *t, "[contact]", "contact", keys);
         ContactModel& c = m.contact;
@@ -571,6 +571,12 @@ private:
             c.buffer = f.real("buffer", std::nullopt, "m", Bounds::positive());
         }
         c.two_way = f.boolean("two_way", true);
+        // target force scale: paper eq. 19 (mass) or tributary length (docs/theory.md §6.9)
+        if (f.has("scaling")) {
+            c.scaling = f.choice("scaling", std::nullopt, {"mass", "length"}) == "mass"
+                            ? ContactScaling::Mass
+                            : ContactScaling::Length;
+        }
 
         // per material pair overrides
         const auto pairs = table_array(src_, *t, "pair", "contact.pair");
