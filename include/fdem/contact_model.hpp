@@ -25,7 +25,7 @@ enum class UnloadingLaw {
 };
 
 /// Scale factor of the force on a target node (paper eq. 19 and its alternative,
-/// docs/theory.md §6.9).
+/// docs/theory.md §6.11).
 enum class ContactScaling {
     Mass,    ///< paper eq. 19: f = (m_j / mbar) (...), mbar = smallest element mass (default)
     Length,  ///< f = (l_j / lbar) (...): l_j = half the lengths of node j's boundary edges,
@@ -94,7 +94,7 @@ struct ContactModel {
     std::vector<Real> node_scale;
     Real l_bar = 0;  ///< smallest boundary edge over all bodies [m] (ContactScaling::Length)
     /// Mass of the single-DOF bound of the stable dt: min over movable boundary nodes of
-    /// m_j / node_scale[j] (= m_bar for ContactScaling::Mass, docs/theory.md §6.9)
+    /// m_j / node_scale[j] (= m_bar for ContactScaling::Mass, docs/theory.md §6.11)
     Real m_dt = 0;
 
     int32_t num_real_nodes = 0;                      ///< = Model::num_nodes()

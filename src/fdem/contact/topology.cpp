@@ -353,7 +353,7 @@ void build_contact_topology(Model& m) {
         tb.body(b);
     cm.node_dist.resize(static_cast<size_t>(cm.num_contact_nodes()), 0.0);
 
-    // scale of the force on a target node (docs/theory.md §6.9): m_j / mbar (eq. 19) or
+    // scale of the force on a target node (docs/theory.md §6.11): m_j / mbar (eq. 19) or
     // l_j / lbar with l_j = half the lengths of the node's boundary edges (its tributary
     // length), lbar = the smallest boundary edge; m_dt is the mass of the stable-dt bound
     cm.node_scale.assign(static_cast<size_t>(m.num_nodes()), 0.0);

@@ -571,7 +571,7 @@ private:
             c.buffer = f.real("buffer", std::nullopt, "m", Bounds::positive());
         }
         c.two_way = f.boolean("two_way", true);
-        // target force scale: paper eq. 19 (mass) or tributary length (docs/theory.md §6.9)
+        // target force scale: paper eq. 19 (mass) or tributary length (docs/theory.md §6.11)
         if (f.has("scaling")) {
             c.scaling = f.choice("scaling", std::nullopt, {"mass", "length"}) == "mass"
                             ? ContactScaling::Mass
