@@ -49,7 +49,10 @@ def fail(msg):
 
 def read_pvd(path):
     """(time, absolute file) of every DataSet of a .pvd collection."""
-    root = ET.parse(path).getroot()
+    try:
+        root = ET.parse(path).getroot()
+    except (OSError, ET.ParseError) as exc:
+        fail(f"{path}: cannot read the series: {exc}")
     if root.get("type") != "Collection":
         fail(f"{path}: VTKFile type is {root.get('type')!r}, expected 'Collection'")
     base = os.path.dirname(os.path.abspath(path))

@@ -44,9 +44,11 @@ set_tests_properties(output.vtk_reader_check_detects_mismatch PROPERTIES
     LABELS "unit;output" FIXTURES_REQUIRED fdem_output_known
     PASS_REGULAR_EXPRESSION "FAILED: frame_000001.vtu: points")
 
-# history plot: energies.png must be written and be a PNG
+# history plot: energies.png must be written and be a PNG (--check), and the reported balance
+# error must be the one write_known_state put in: total = 10 + 0.001 k^2 J/m, k = 0..3 -> 9e-3
 add_test(NAME output.plot_history
          COMMAND ${FDEM_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/plot_history.py
                  ${FDEM_OUTPUT_TEST_DIR}/history.csv --check)
 set_tests_properties(output.plot_history PROPERTIES
-    LABELS "unit;output" FIXTURES_REQUIRED fdem_output_known)
+    LABELS "unit;output" FIXTURES_REQUIRED fdem_output_known
+    PASS_REGULAR_EXPRESSION "4 rows, max [|]energy_error[|] 9[.]000e-03 J/m")
