@@ -392,7 +392,46 @@ private:
                 lm.tri_owner[static_cast<size_t>(t)] = static_cast<int>(i);
             }
             entry.node_map = add_bodies(m, lm.data, tris, opt);
+            check_duplicate_nodes(f, lm, entry.node_map, m);
             bodies_.push_back(std::move(entry));
+        }
+    }
+
+    /// Two nodes at the same position inside one body (after the split into connected
+    /// components) are a hidden crack: usually two meshes pasted without merging their nodes.
+    /// Coincident nodes of different bodies are fine (bodies touching at t = 0).
+    static void check_duplicate_nodes(const Fields& f, const LoadedMesh& lm,
+                                      const std::vector<NodeId>& node_map, const Model& m) {
+        struct Key {
+            BodyId body;
+            Vec2 x;
+            int32_t mesh_node;
+        };
+        std::vector<Key> keys;
+        for (size_t i = 0; i < node_map.size(); ++i) {
+            if (node_map[i] != kNone) {
+                keys.push_back(
+                    {m.node_body[node_map[i]], lm.data.nodes[i], static_cast<int32_t>(i)});
+            }
+        }
+        const auto less = [](const Key& a, const Key& b) {
+            if (a.body != b.body) return a.body < b.body;
+            if (a.x.x != b.x.x) return a.x.x < b.x.x;
+            if (a.x.y != b.x.y) return a.x.y < b.x.y;
+            return a.mesh_node < b.mesh_node;
+        };
+        std::sort(keys.begin(), keys.end(), less);
+        for (size_t k = 1; k < keys.size(); ++k) {
+            const Key& a = keys[k - 1];
+            const Key& b = keys[k];
+            if (a.body == b.body && a.x.x == b.x.x && a.x.y == b.x.y) {
+                f.fail(*f.node("mesh"), "mesh",
+                       fmt::format("mesh '{}' has two distinct nodes at the same position ({:g}, "
+                                   "{:g}) in one body (nodes #{} and #{} in file order): the "
+                                   "elements around them are not connected, a hidden crack; "
+                                   "merge duplicate nodes (Gmsh: Coherence Mesh;)",
+                                   lm.path, a.x.x, a.x.y, a.mesh_node + 1, b.mesh_node + 1));
+            }
         }
     }
 
