@@ -14,7 +14,7 @@ namespace fdem {
 struct Energy {
     Real time = 0;                ///< t^n at which the energies below were evaluated [s]
     Real kinetic = 0;             ///< sum 1/2 m |v^n|^2 with v^n = (v^{n-1/2} + v^{n+1/2})/2
-    Real strain = 0;              ///< sum A0 W(F)
+    Real strain = 0;              ///< sum A0 W(F) (stale when State::need_energy was false)
     Real contact = 0;             ///< stored contact potential (path-independent part)
     Real work_gravity = 0;        ///< work done by gravity since t = 0
     Real work_external = 0;       ///< work done by prescribed-velocity supports and kicks
@@ -41,6 +41,11 @@ struct State {
     /// per-chunk partial sums of step()'s reductions, combined in chunk order (determinism)
     std::vector<Real> scratch_sums;
     int32_t next_kick = 0;  ///< index of the next VelocityKick to apply
+    /// Evaluate the strain energy (a std::log per triangle) in the next step(). When false,
+    /// energy.strain keeps the value of the last step that evaluated it (stale);
+    /// x, v and every other energy are bitwise the same either way. Callers that read the
+    /// energies only on output / check steps set it for those steps (docs/performance.md).
+    bool need_energy = true;
 
     ContactState contact;  ///< pair history, candidate lists, scratch (contact_state.hpp)
 };

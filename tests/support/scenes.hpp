@@ -32,7 +32,8 @@ inline std::vector<NodeId> add_rectangle(Model& m, Real x0, Real y0, Real w, Rea
                                          bool alternate = false, std::string name = "rect") {
     const MeshData mesh = make_rectangle_mesh(x0, y0, w, h, nx, ny, alternate);
     std::vector<int32_t> all(mesh.tris.size());
-    for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int32_t>(i);
+    for (size_t i = 0; i < all.size(); ++i)
+        all[i] = static_cast<int32_t>(i);
     BodyOptions opt;
     opt.name = std::move(name);
     opt.material = material;
@@ -59,15 +60,19 @@ inline void shuffle_mesh(MeshData& mesh, uint32_t seed = 12345) {
     std::iota(perm.begin(), perm.end(), 0);
     std::shuffle(perm.begin(), perm.end(), rng);
     std::vector<Vec2> nodes(mesh.nodes.size());
-    for (size_t i = 0; i < perm.size(); ++i) nodes[static_cast<size_t>(perm[i])] = mesh.nodes[i];
+    for (size_t i = 0; i < perm.size(); ++i)
+        nodes[static_cast<size_t>(perm[i])] = mesh.nodes[i];
     mesh.nodes = std::move(nodes);
     for (auto& t : mesh.tris) {
-        for (auto& n : t) n = perm[static_cast<size_t>(n)];
+        for (auto& n : t)
+            n = perm[static_cast<size_t>(n)];
     }
     for (auto& l : mesh.lines) {
-        for (auto& n : l) n = perm[static_cast<size_t>(n)];
+        for (auto& n : l)
+            n = perm[static_cast<size_t>(n)];
     }
-    for (auto& p : mesh.points) p = perm[static_cast<size_t>(p)];
+    for (auto& p : mesh.points)
+        p = perm[static_cast<size_t>(p)];
     std::shuffle(mesh.tris.begin(), mesh.tris.end(), rng);  // every triangle has tag 1 here
 }
 
@@ -108,9 +113,144 @@ inline Model make_block(const BlockOptions& o) {
         bc.name = "bottom";
         bc.nodes = select_nodes(m, 0, [](Vec2 p) { return p.y < 1e-12; });
         bc.has_x = bc.has_y = true;
-        for (NodeId i : bc.nodes) m.node_v0[i] = {};
+        for (NodeId i : bc.nodes)
+            m.node_v0[i] = {};
         m.bcs.push_back(bc);
     }
+    finalize_model(m);
+    return m;
+}
+
+/// Options of the contact-heavy pack (issue "performance", scene b).
+struct PackOptions {
+    int blocks_x = 100;     ///< blocks per row
+    int blocks_y = 100;     ///< rows: blocks_x * blocks_y bodies of two triangles each
+    Real size = 0.01;       ///< block edge [m]
+    Real gap = 0.001;       ///< nominal gap between neighbours [m] (< the default contact skin)
+    Real speed = 20;        ///< each half moves towards the other at this speed [m/s]
+    bool shuffled = false;  ///< bodies added in random order (ids far apart in space)
+    uint32_t seed = 2024;   ///< position and velocity jitter
+};
+
+/// Contact-heavy pack: blocks_x x blocks_y square blocks (two triangles each, so every node is
+/// a boundary node and the diagonal is a chord) on a raster with small gaps. The left half
+/// moves at +speed, the right half at -speed in x; every block gets a seeded jitter of
+/// +-gap/4 in position and +-speed/20 in velocity so that the whole pack is in relative motion.
+/// Smooth contact, paper material (E = 1 GPa, nu = 0.25, rho = 1000 kg/m^3).
+inline Model make_contact_pack(const PackOptions& o) {
+    Model m;
+    m.materials.push_back(paper_material("block", 1e9, 0.25, 1000.0));
+    std::mt19937 rng(o.seed);
+    std::uniform_real_distribution<Real> u(-1.0, 1.0);
+    const int n = o.blocks_x * o.blocks_y;
+    std::vector<int> order(static_cast<size_t>(n));
+    std::iota(order.begin(), order.end(), 0);
+    if (o.shuffled) std::shuffle(order.begin(), order.end(), rng);
+    MeshData mesh;
+    mesh.nodes.reserve(4 * static_cast<size_t>(n));
+    mesh.tris.reserve(2 * static_cast<size_t>(n));
+    std::vector<Vec2> body_v;  // velocity per block, in the order the blocks are added
+    body_v.reserve(static_cast<size_t>(n));
+    const Real pitch = o.size + o.gap;
+    for (int k : order) {
+        const int i = k % o.blocks_x, j = k / o.blocks_x;
+        const Real x0 = i * pitch + 0.25 * o.gap * u(rng);
+        const Real y0 = j * pitch + 0.25 * o.gap * u(rng);
+        const int32_t b = static_cast<int32_t>(mesh.nodes.size());
+        mesh.nodes.push_back({x0, y0});
+        mesh.nodes.push_back({x0 + o.size, y0});
+        mesh.nodes.push_back({x0 + o.size, y0 + o.size});
+        mesh.nodes.push_back({x0, y0 + o.size});
+        mesh.tris.push_back({b, b + 1, b + 2});
+        mesh.tris.push_back({b, b + 2, b + 3});
+        const Real vx = (2 * i < o.blocks_x ? o.speed : -o.speed) + 0.05 * o.speed * u(rng);
+        body_v.push_back({vx, 0.05 * o.speed * u(rng)});
+    }
+    mesh.tri_tag.assign(mesh.tris.size(), 1);
+    std::vector<int32_t> all(mesh.tris.size());
+    std::iota(all.begin(), all.end(), 0);
+    BodyOptions opt;
+    opt.name = "blocks";
+    add_bodies(m, mesh, all, opt);  // one body per block, in mesh order
+    for (BodyId b = 0; b < m.num_bodies(); ++b) {
+        for (NodeId i = m.bodies[b].node_begin; i < m.bodies[b].node_end; ++i)
+            m.node_v0[i] = body_v[static_cast<size_t>(b)];
+    }
+    m.contact.algorithm = ContactAlgorithm::Smooth;
+    finalize_model(m);
+    return m;
+}
+
+/// Options of the particle raster in a box (the paper's Fig. 1, scene c).
+struct ParticleOptions {
+    int nx = 100;          ///< particles per row
+    int ny = 100;          ///< rows
+    Real spacing = 0.01;   ///< raster pitch [m]
+    Real radius = 0.0045;  ///< largest vertex distance from the particle centre [m]
+    int min_vertices = 5;  ///< polygon vertices, uniform in [min_vertices, max_vertices]
+    int max_vertices = 8;
+    Real v_max = 5;             ///< initial velocity components uniform in [-v_max, v_max] [m/s]
+    Real wall = 0.02;           ///< wall thickness [m]
+    Real youngs_modulus = 1e8;  ///< particles [Pa] (walls: the same material, but fixed)
+    uint32_t seed = 7;
+};
+
+/// Raster of nx x ny irregular deformable particles in a closed box. Each particle is a random
+/// star-shaped polygon (min..max vertices at jittered angles and radii 0.6..1 x radius) fanned
+/// from its centre: one triangle per edge, one interior node. Random initial velocity per
+/// particle (seeded). Four fixed wall bodies (structured rectangles) enclose the raster with a
+/// clearance of half a pitch. Smooth contact; rho = 1000 kg/m^3, nu = 0.25.
+inline Model make_particle_box(const ParticleOptions& o) {
+    Model m;
+    m.materials.push_back(paper_material("particle", o.youngs_modulus, 0.25, 1000.0));
+    std::mt19937 rng(o.seed);
+    std::uniform_real_distribution<Real> u(0.0, 1.0);
+    const Real pi = std::acos(-1.0);
+    MeshData mesh;
+    std::vector<Vec2> body_v;
+    for (int j = 0; j < o.ny; ++j) {
+        for (int i = 0; i < o.nx; ++i) {
+            const Vec2 c = {(i + 0.5) * o.spacing, (j + 0.5) * o.spacing};
+            const int k =
+                o.min_vertices +
+                static_cast<int>(u(rng) * (o.max_vertices - o.min_vertices + 1) * 0.999999);
+            const int32_t centre = static_cast<int32_t>(mesh.nodes.size());
+            mesh.nodes.push_back(c);
+            const Real a0 = 2 * pi * u(rng);
+            for (int q = 0; q < k; ++q) {
+                // angles stay increasing (jitter < half a sector), so the fan is valid
+                const Real a = a0 + 2 * pi * (q + 0.4 * (u(rng) - 0.5)) / k;
+                const Real r = o.radius * (0.6 + 0.4 * u(rng));
+                mesh.nodes.push_back({c.x + r * std::cos(a), c.y + r * std::sin(a)});
+            }
+            for (int q = 0; q < k; ++q)
+                mesh.tris.push_back({centre, centre + 1 + q, centre + 1 + (q + 1) % k});
+            body_v.push_back({o.v_max * (2 * u(rng) - 1), o.v_max * (2 * u(rng) - 1)});
+        }
+    }
+    mesh.tri_tag.assign(mesh.tris.size(), 1);
+    std::vector<int32_t> all(mesh.tris.size());
+    std::iota(all.begin(), all.end(), 0);
+    BodyOptions opt;
+    opt.name = "particles";
+    add_bodies(m, mesh, all, opt);
+    for (BodyId b = 0; b < m.num_bodies(); ++b) {
+        for (NodeId i = m.bodies[b].node_begin; i < m.bodies[b].node_end; ++i)
+            m.node_v0[i] = body_v[static_cast<size_t>(b)];
+    }
+    // walls: bottom, top (full width incl. corners), left, right; clearance half a pitch
+    const Real w = o.nx * o.spacing, h = o.ny * o.spacing, t = o.wall;
+    const int cells = std::max(1, static_cast<int>(std::lround(t / o.spacing * 2)));
+    auto cells_along = [&](Real len) {
+        return std::max(1, static_cast<int>(len / (0.5 * o.spacing)));
+    };
+    add_rectangle(m, -t, -t, w + 2 * t, t, cells_along(w + 2 * t), cells, 0, true, {}, false,
+                  "wall_bottom");
+    add_rectangle(m, -t, h, w + 2 * t, t, cells_along(w + 2 * t), cells, 0, true, {}, false,
+                  "wall_top");
+    add_rectangle(m, -t, 0, t, h, cells, cells_along(h), 0, true, {}, false, "wall_left");
+    add_rectangle(m, w, 0, t, h, cells, cells_along(h), 0, true, {}, false, "wall_right");
+    m.contact.algorithm = ContactAlgorithm::Smooth;
     finalize_model(m);
     return m;
 }

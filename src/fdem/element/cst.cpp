@@ -33,7 +33,8 @@ constexpr size_t kChunkSlots = 4;
 
 // Triangles [begin, end) of one body with Lame constants (lambda, mu). kViscous: some triangle
 // of the range has eta > 0 (theory eq. 2.4); otherwise the viscous code is compiled out.
-template <bool kViscous>
+// kEnergy: sum the strain energy (one std::log per triangle); the forces do not depend on it.
+template <bool kViscous, bool kEnergy>
 void element_range(const Model& m, const Vec2* __restrict x, const Vec2* __restrict v,
                    Vec2* __restrict f, TriId begin, TriId end, Real lambda, Real mu,
                    ElementPass& out) {
@@ -61,7 +62,7 @@ void element_range(const Model& m, const Vec2* __restrict x, const Vec2* __restr
 
         // elastic Cauchy stress and strain energy (theory eqs. 2.1, 2.2)
         Mat2 sigma = cauchy_stress(lambda, mu, F);
-        energy += area0[t] * strain_energy_density(lambda, mu, F);
+        if constexpr (kEnergy) energy += area0[t] * strain_energy_density(lambda, mu, F);
 
         // viscous stress eta D, D = sym(L), L = [v1-v0, v2-v0] Ds^-1 (theory eq. 2.4)
         if constexpr (kViscous) {
@@ -91,15 +92,19 @@ void element_range(const Model& m, const Vec2* __restrict x, const Vec2* __restr
 
 // Dispatch a range of triangles of one material on whether any of them is viscous.
 void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
-                    ElementPass& out) {
+                    bool with_energy, ElementPass& out) {
     const Material& mt = m.materials[m.tri_material[begin]];
     // tri_eta = eta + 2 h xi sqrt(E rho) (theory eq. 2.6) is > 0 exactly when the material has a
     // viscosity or a damping ratio: decided per material, without reading tri_eta
     const bool viscous = mt.viscosity > 0 || mt.damping_ratio > 0;
-    if (viscous) {
-        element_range<true>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
+    if (viscous && with_energy) {
+        element_range<true, true>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
+    } else if (viscous) {
+        element_range<true, false>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
+    } else if (with_energy) {
+        element_range<false, true>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
     } else {
-        element_range<false>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
+        element_range<false, false>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
     }
 }
 
@@ -118,7 +123,7 @@ ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Ve
             TriId run = lo + 1;
             while (run < hi && m.tri_material[run] == m.tri_material[lo])
                 ++run;
-            material_range(m, x, v, f, lo, run, out);
+            material_range(m, x, v, f, lo, run, true, out);
             lo = run;
         }
     }
@@ -136,6 +141,7 @@ ElementPass add_internal_forces(const Model& m, State& s) {
     const Vec2* x = s.x.data();
     const Vec2* v = s.v.data();
     Vec2* f = s.f.data();
+    const bool with_energy = s.need_energy;
 
     // colors one after the other (implicit barrier at the end of each omp for); the chunks of a
     // color touch disjoint nodes, so their scatter needs no atomics. Dynamic scheduling only
@@ -145,7 +151,7 @@ ElementPass add_internal_forces(const Model& m, State& s) {
 #pragma omp for schedule(dynamic, 1)
         for (int32_t k = sc.color_begin[c]; k < sc.color_begin[c + 1]; ++k) {
             ElementPass p;
-            material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], p);
+            material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy, p);
             Real* slot = part + kChunkSlots * static_cast<size_t>(k);
             slot[0] = p.strain_energy;
             slot[1] = p.viscous_power;

@@ -26,7 +26,8 @@ ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Ve
 /// parallel over m.element_schedule. Bitwise identical for every OpenMP thread count: each node
 /// receives its triangles' forces in the schedule's fixed order, and the energies are summed per
 /// chunk and then over chunks in chunk order (docs/performance.md). Uses s.scratch_sums (sized on
-/// first use, so it allocates only once).
+/// first use, so it allocates only once). The strain energy is summed only when s.need_energy
+/// (otherwise 0); the forces are bitwise the same either way.
 ElementPass add_internal_forces(const Model& m, State& s);
 
 /// Cut the triangles of the non-fixed bodies into chunks and color them so that chunks of one

@@ -260,7 +260,7 @@ void step(const Model& m, State& s) {
 
     s.energy.kinetic = 0.5 * kinetic2;
     s.energy.time = s.time;
-    s.energy.strain = pass.strain_energy;
+    if (s.need_energy) s.energy.strain = pass.strain_energy;  // else stale (State::need_energy)
     s.energy.work_gravity = gravity_work;
     s.energy.work_external += support_work;
     s.energy.dissipated_viscous += (pass.viscous_power + damping_power) * dt_v;
