@@ -5,6 +5,8 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -27,6 +29,36 @@ inline const Model& cached_block(int64_t num_tris, bool loaded, bool shuffled) {
         auto& fresh = cache[{num_tris, loaded, shuffled}];
         fresh = std::make_unique<Model>(scenes::make_block(o));
         return *fresh;
+    }
+    return *slot;
+}
+
+/// The contact-heavy pack (scenes::make_contact_pack) with about num_tris triangles (two per
+/// block, square raster), built once per process; the last big one is kept.
+inline const Model& cached_pack(int64_t num_tris, bool shuffled) {
+    static std::map<std::pair<int64_t, bool>, std::unique_ptr<Model>> cache;
+    auto& slot = cache[{num_tris, shuffled}];
+    if (!slot) {
+        scenes::PackOptions o;
+        o.blocks_x = std::max(1, static_cast<int>(std::lround(std::sqrt(num_tris / 2.0))));
+        o.blocks_y = o.blocks_x;
+        o.shuffled = shuffled;
+        if (num_tris >= (1 << 20)) cache.clear();
+        auto& fresh = cache[{num_tris, shuffled}];
+        fresh = std::make_unique<Model>(scenes::make_contact_pack(o));
+        return *fresh;
+    }
+    return *slot;
+}
+
+/// The particle box (scenes::make_particle_box) with n x n particles, built once per process.
+inline const Model& cached_particles(int n) {
+    static std::map<int, std::unique_ptr<Model>> cache;
+    auto& slot = cache[n];
+    if (!slot) {
+        scenes::ParticleOptions o;
+        o.nx = o.ny = n;
+        slot = std::make_unique<Model>(scenes::make_particle_box(o));
     }
     return *slot;
 }

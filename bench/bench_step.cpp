@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "bench_common.hpp"
+#include "bench_phases.hpp"
 #include "fdem/simulate.hpp"
 #include "support/hash.hpp"
 
@@ -38,6 +39,77 @@ BENCHMARK(BM_Step)
         bench::tri_sizes(b, 1);
         bench::tri_sizes(b, 2);
     }) -> Unit(benchmark::kMicrosecond);
+
+// BM_Step with State::need_energy = false: no strain energy (one std::log per triangle), as the
+// CLI runs between output steps. The hash must equal BM_Step's for the same number of steps.
+void BM_StepNoEnergy(benchmark::State& st) {
+    omp_set_num_threads(static_cast<int>(st.range(1)));
+    const Model& m = bench::cached_block(st.range(0), true, false);
+    State s = make_state(m, 0.9 * stable_time_step(m));
+    step(m, s);
+    s.need_energy = false;
+    for (auto _ : st)
+        step(m, s);
+    st.SetItemsProcessed(st.iterations() * m.num_tris());
+    st.counters["omp_threads"] = static_cast<double>(st.range(1));
+    st.counters["dt"] = s.dt;
+    st.counters["steps"] = static_cast<double>(s.step);
+}
+
+BENCHMARK(BM_StepNoEnergy)
+    ->Apply([](auto* b) {
+        bench::tri_sizes(b, 1);
+        bench::tri_sizes(b, 2);
+    }) -> Unit(benchmark::kMicrosecond);
+
+// The whole step on a contact scene, dt = 0.5 x stable (contact bound included). Besides
+// items/s = triangle-steps/s, dt and drift as in BM_Step: the per-phase breakdown in seconds
+// per step (element, broad = one detection, broad_amort = detection x rebuilds per step,
+// narrow = contact without detection, rest = node update, clears and supports = step minus the
+// others), the rebuild rate and the active contacts.
+void step_scene(benchmark::State& st, const Model& m) {
+    State s = make_state(m, 0.5 * stable_time_step(m));
+    for (int k = 0; k < 20; ++k)  // past the first-step special case and the first rebuilds
+        step(m, s);
+    const Real e0 = s.energy.total();
+    const int64_t steps0 = s.step, rebuilds0 = s.contact.rebuilds;
+    Real scale = 0, drift = 0;
+    for (auto _ : st) {
+        step(m, s);
+        scale = std::max(scale, s.energy.kinetic + s.energy.strain + s.energy.contact);
+        drift = std::max(drift, std::abs(s.energy.total() - e0));
+    }
+    const double steps = static_cast<double>(s.step - steps0);
+    st.SetItemsProcessed(st.iterations() * m.num_tris());
+    const bench::PhaseTimes p = bench::time_phases(m, s, 5);
+    const double rebuild_rate = static_cast<double>(s.contact.rebuilds - rebuilds0) / steps;
+    st.counters["omp_threads"] = static_cast<double>(omp_get_max_threads());
+    st.counters["dt"] = s.dt;
+    st.counters["drift"] = scale > 0 ? drift / scale : 0;
+    st.counters["steps"] = steps;
+    st.counters["t_element"] = p.element;
+    st.counters["t_broad"] = p.broad;
+    st.counters["broad_per_step"] = rebuild_rate;
+    st.counters["t_narrow"] = p.narrow;
+    st.counters["pairs"] = static_cast<double>(p.pairs);
+    st.counters["active"] = s.contact.active_contacts;
+    st.counters["hash32"] = static_cast<double>(scenes::state_hash(s) & 0xffffffffu);
+}
+
+void BM_StepPack(benchmark::State& st) {
+    omp_set_num_threads(static_cast<int>(st.range(1)));
+    step_scene(st, bench::cached_pack(st.range(0), false));
+}
+
+BENCHMARK(BM_StepPack)->ArgsProduct({{20000, 200000}, {1, 2}})->Unit(benchmark::kMicrosecond);
+
+// Args: {particles per side, threads}; ~6.5 triangles per particle plus the walls
+void BM_StepParticles(benchmark::State& st) {
+    omp_set_num_threads(static_cast<int>(st.range(1)));
+    step_scene(st, bench::cached_particles(static_cast<int>(st.range(0))));
+}
+
+BENCHMARK(BM_StepParticles)->ArgsProduct({{100}, {1, 2}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace fdem

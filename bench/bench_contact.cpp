@@ -1,0 +1,47 @@
+// Narrow phase of the smooth contact on the contact-heavy pack (docs/performance.md): one
+// add_contact_forces() without broad-phase rebuild = virtual-node update, skin check, history
+// merge, locate + field + law of every candidate (node, body) pair, serial scatter.
+// items/s = candidate pairs/s. Args: {triangles, shuffled numbering (0/1), threads}. Shuffled:
+// the blocks are numbered in random order, so the contactor data of neighbouring pairs lie far
+// apart in memory.
+#include "bench_common.hpp"
+#include "bench_phases.hpp"
+#include "contact/contact.hpp"
+#include "fdem/simulate.hpp"
+
+namespace fdem {
+namespace {
+
+// warm-up: 100 steps, so that the pack's middle has collided and the pair histories are live
+State warm_pack(const Model& m) {
+    State s = make_state(m, 0.5 * stable_time_step(m));
+    for (int k = 0; k < 100; ++k)
+        step(m, s);
+    return s;
+}
+
+void BM_NarrowPhase(benchmark::State& st) {
+    omp_set_num_threads(static_cast<int>(st.range(2)));
+    const Model& m = bench::cached_pack(st.range(0), st.range(1) != 0);
+    State s = warm_pack(m);
+    s.contact.need_rebuild = true;  // candidates from the current positions
+    add_contact_forces(m, s);
+    for (auto _ : st) {
+        s.contact.need_rebuild = false;
+        s.contact.skin_used = 0;
+        add_contact_forces(m, s);
+    }
+    const double pairs = static_cast<double>(s.contact.cand_node.size());
+    st.SetItemsProcessed(st.iterations() * static_cast<int64_t>(pairs));
+    st.counters["omp_threads"] = static_cast<double>(st.range(2));
+    st.counters["pairs"] = pairs;
+    st.counters["tris_per_pair"] = static_cast<double>(s.contact.cand_tri.size()) / pairs;
+    st.counters["active"] = s.contact.active_contacts;
+}
+
+BENCHMARK(BM_NarrowPhase)
+    ->ArgsProduct({{20000, 200000}, {0, 1}, {1, 2}})
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace fdem
