@@ -5,6 +5,7 @@ set(FDEM_EXAMPLES
   "01_cantilever            0.05"
   "02_elastic_bar           2.0e-4"
   "03_contact_slide         0.05"
+  "04_particles             2.0e-5"
 )
 foreach(entry ${FDEM_EXAMPLES})
   string(REGEX REPLACE " +" ";" parts "${entry}")
