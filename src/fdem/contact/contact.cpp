@@ -366,6 +366,23 @@ Real contact_stable_dt(const Model& m) {
         grad2 = std::max(grad2, r * r);
     }
 
+    // mass ratio of the pair spring (theory eq. 6.15): the target force (m_j/mbar) k g' d also acts,
+    // spread by N_i <= 1, on a contactor node of mass m_i, so the two-mass system has
+    // omega^2 = (k g' / mbar)(1 + m_j / m_i) (the 1/m_j term vanishes for a fixed target, the
+    // m_j/m_i term does not). Bound it by the heaviest target over the lightest movable contactor
+    // node: with heavy base nodes pushing light block nodes the old factor 2 was unstable.
+    Real m_target_max = 0, m_contactor_min = std::numeric_limits<Real>::infinity();
+    for (NodeId j : cm.boundary_nodes) m_target_max = std::max(m_target_max, m.node_mass[j]);
+    for (int32_t t = 0; t < cm.num_sub_tris(); ++t) {
+        for (NodeId i : cm.sub_tri[t]) {
+            if (i >= cm.num_real_nodes || m.node_inv_mass[i] == 0) continue;
+            m_contactor_min = std::min(m_contactor_min, m.node_mass[i]);
+        }
+    }
+    const Real mass_factor = std::isfinite(m_contactor_min) && m_contactor_min > 0
+                                 ? 1.0 + m_target_max / m_contactor_min
+                                 : 2.0;
+
     // stiffness factor g' at the deepest penetration expected, d_ref = 0.1 h_min (spec §4.6);
     // the unloading branch is up to beta times stiffer than the loading one (theory eq. 6.13)
     const Real d_ref = 0.1 * cm.h_min;
@@ -376,14 +393,14 @@ Real contact_stable_dt(const Model& m) {
         } else {
             gp = std::max(gp, contact_dg(d_ref, p.beta, p.length_scale));
         }
-        // omega_c = sqrt(g' k_n / mbar) * sqrt(2): the reaction on a contactor node of similar
-        // mass doubles the effective stiffness (spec §3.4); damping lowers the bound
+        // omega_c = sqrt(g' k_n (1 + m_j/m_i) / mbar) (theory eq. 6.15; spec §3.4 has the factor
+        // 2 of equal masses); damping lowers the bound
         const Real k = gp * p.penalty * grad2;
-        const Real omega = std::sqrt(2.0 * k / cm.m_dt);
+        const Real omega = std::sqrt(mass_factor * k / cm.m_dt);
         const Real zeta = p.damping / (2.0 * std::sqrt(k * cm.m_dt));
         dt = std::min(dt, 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta));
         if (p.friction > 0 && p.tangential_penalty > 0) {
-            dt = std::min(dt, 2.0 / std::sqrt(2.0 * p.tangential_penalty / cm.m_dt));
+            dt = std::min(dt, 2.0 / std::sqrt(mass_factor * p.tangential_penalty / cm.m_dt));
         }
     }
     return dt;
