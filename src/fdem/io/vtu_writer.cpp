@@ -246,6 +246,20 @@ void write_vtu(const std::string& path, const Model& m, const State& s,
     point.push_back(vec_array("force", s.f));
     point.push_back(vec_array("contact_force", s.f_contact));
     point.push_back(id_array("body", m.node_body));
+    // the nodal contact distance d_i of paper eqs. 1-2 (0 on the boundary); ParaView's linear
+    // interpolation of it over each triangle is the distance field of paper eq. 3 wherever the
+    // element needed no virtual-node split (theory §6)
+    const ContactModel& cm = m.contact;
+    if (cm.algorithm != ContactAlgorithm::None && static_cast<int64_t>(cm.node_dist.size()) >= nn) {
+        const Real* dist = cm.node_dist.data();
+        point.push_back({"contact_distance", VtkType::Float64, 1, nn,
+                         [dist](int64_t b, int64_t e, unsigned char* out) {
+                             double* o = reinterpret_cast<double*>(out);
+                             for (int64_t i = b; i < e; ++i)
+                                 *o++ = dist[i];
+                         },
+                         nullptr});
+    }
     for (const ExtraField& f : extra_point) {
         point.push_back(extra_array(f, nn, "point"));
     }

@@ -14,8 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "fdem/build.hpp"
 #include "fdem/error.hpp"
+#include "fdem/mesh.hpp"
 #include "fdem/output.hpp"
+#include "fdem/simulate.hpp"
 
 namespace fdem {
 namespace {
@@ -394,6 +397,40 @@ TEST(PvdSeries, RewrittenCompleteAfterEveryFrame) {
     EXPECT_NE(two.find(R"(file="a&amp;b.vtu")"), std::string::npos) << two;
     EXPECT_EQ(series.frames().size(), 2u);
     EXPECT_FALSE(fs::exists(pvd.string() + ".tmp"));
+}
+
+// With contact on, the nodal contact distance (paper eqs. 1-2) is written as point data. On a
+// 4 x 2 structured rectangle of 1 x 0.5 m every interior node lies one cell (0.25 m) from the
+// nearest face, and boundary nodes have distance 0.
+TEST(WriteVtu, ContactDistanceIsWrittenWhenContactIsOn) {
+    Model m;
+    Material mat;
+    mat.name = "m";
+    mat.density = 1000;
+    mat.youngs_modulus = 1e9;
+    m.materials.push_back(mat);
+    const MeshData mesh = make_rectangle_mesh(0, 0, 1, 0.5, 4, 2);
+    std::vector<int32_t> all(mesh.tris.size());
+    for (size_t i = 0; i < all.size(); ++i)
+        all[i] = static_cast<int32_t>(i);
+    BodyOptions opt;
+    opt.name = "r";
+    add_bodies(m, mesh, all, opt);
+    m.contact.algorithm = ContactAlgorithm::Smooth;
+    finalize_model(m);
+    State s = make_state(m, 1e-6);
+    const fs::path file = test_dir() / "contact_distance.vtu";
+    write_vtu(file.string(), m, s);
+
+    const ParsedVtu v = parse_vtu(read_all(file));
+    const std::vector<double> d =
+        as<double>(v.payload(v.get("PointData", "contact_distance")).second);
+    ASSERT_EQ(d.size(), static_cast<size_t>(m.num_nodes()));
+    for (NodeId i = 0; i < m.num_nodes(); ++i) {
+        const Vec2 p = m.node_x0[i];
+        const bool boundary = p.x < 1e-12 || p.y < 1e-12 || p.x > 1 - 1e-12 || p.y > 0.5 - 1e-12;
+        EXPECT_NEAR(d[i], boundary ? 0.0 : 0.25, 1e-12) << "node " << i;
+    }
 }
 
 }  // namespace
