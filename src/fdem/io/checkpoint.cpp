@@ -141,6 +141,7 @@ void put_state(Sink& o, const State& s) {
     put(o, s.f_contact);
     put(o, s.energy);
     put(o, s.next_kick);
+    put(o, s.need_energy);
     // scratch_bc_v, scratch_sums: rewritten before being read in every step (not saved)
 
     const ContactState& c = s.contact;
@@ -170,6 +171,22 @@ void put_state(Sink& o, const State& s) {
     put(o, c.active_next);
     put(o, c.xv);
     put(o, c.vv);
+    // pair_out: per-step scratch (not saved)
+
+    // baseline A: couples with their friction history and the Verlet skin
+    const LegacyTriangleState& l = c.legacy;
+    put(o, static_cast<uint64_t>(l.couples.size()));
+    for (const LegacyCouple& cp : l.couples) {
+        put(o, cp.a);
+        put(o, cp.b);
+        for (Real sl : cp.slide)
+            put(o, sl);
+    }
+    put(o, l.skin_used);
+    put(o, l.need_rebuild);
+    put(o, l.rebuilds);
+    put(o, l.active);
+    // l.next, grid scratch and per-couple results: rewritten before being read (not saved)
 }
 
 template <class Sink>
@@ -447,6 +464,7 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     r.get_sized(s.f_contact, nn, "f_contact");
     r.get(s.energy);
     r.get(s.next_kick);
+    r.get(s.need_energy);
     if (s.step < 0 || s.next_kick < 0 || s.next_kick > static_cast<int32_t>(m.kicks.size())) {
         r.fail("step or kick counter out of range (corrupt file)");
     }
@@ -476,6 +494,18 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     r.get(c.active_next);
     r.get(c.xv);
     r.get(c.vv);
+    LegacyTriangleState& l = c.legacy;
+    l.couples.resize(r.count(2 * sizeof(TriId) + 6 * sizeof(Real)));
+    for (LegacyCouple& cp : l.couples) {
+        r.get(cp.a);
+        r.get(cp.b);
+        for (Real& sl : cp.slide)
+            r.get(sl);
+    }
+    r.get(l.skin_used);
+    r.get(l.need_rebuild);
+    r.get(l.rebuilds);
+    r.get(l.active);
 
     // ids read back must index the model (a corrupt file must not crash the contact code)
     const int32_t nb = m.num_bodies(), ncn = m.contact.num_contact_nodes();
@@ -497,6 +527,9 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
         ok = !bad_id(c.cand_tri[k], nsub);
     for (size_t k = 0; ok && k < c.active.size(); ++k) {
         ok = !bad_id(c.active[k].node, static_cast<int32_t>(nn)) && !bad_id(c.active[k].body, nb);
+    }
+    for (const LegacyCouple& cp : l.couples) {
+        ok = ok && !bad_id(cp.a, m.num_tris()) && !bad_id(cp.b, m.num_tris());
     }
     if (!ok) r.fail("contact candidate or history ids out of range (corrupt file)");
 

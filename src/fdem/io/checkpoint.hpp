@@ -8,8 +8,11 @@
 // field (never raw, so padding bytes never reach the file and equal states give equal files).
 //
 // What is saved: every State field that carries information from one step to the next: step,
-// time, dt, x, v, f, f_contact, energy, next_kick and the whole ContactState. scratch_bc_v and
-// scratch_sums are rewritten before they are read in every step and are not saved.
+// time, dt, x, v, f, f_contact, energy, next_kick and the ContactState (candidates, pair history,
+// broad-phase skin, baseline A couples with their sliding history). scratch_bc_v, scratch_sums,
+// ContactState::pair_out and the baseline A grid/result scratch are rewritten before they are
+// read in every step and are not saved. tests/unit/io/checkpoint_test.cpp pins the struct
+// sizes, so a new field in State or ContactState fails a test until it is handled here.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +26,7 @@
 namespace fdem {
 
 /// Version of the checkpoint layout; bump it whenever the payload changes.
-constexpr uint32_t kCheckpointFormat = 1;
+constexpr uint32_t kCheckpointFormat = 2;  // 2: baseline A couples (ContactState::legacy)
 
 /// Running energy-balance monitor (the [checks] energy test of the CLI), kept in checkpoints so
 /// a restarted run measures the drift from the same E_0.

@@ -22,6 +22,7 @@
 
 #include "fdem/error.hpp"
 #include "fdem/mesh.hpp"
+#include "io/msh_precheck.hpp"
 
 namespace fdem {
 
@@ -373,6 +374,9 @@ MeshData read_mesh(const std::string& path, Real mesh_size) {
                                      path, mesh_size));
     }
 
+    if (ext == ".msh") {
+        io::precheck_msh(path);  // Gmsh 4.8 crashes on some malformed MSH 2 element lines
+    }
     const std::lock_guard<std::mutex> lock(gmsh_mutex());
     GmshSession session;
     try {

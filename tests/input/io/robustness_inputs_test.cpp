@@ -113,6 +113,31 @@ TEST(RobustInputs, MeshOfLinesOnly) {
     EXPECT_THAT(error_of(scenario(mesh)), HasSubstr("contains no triangles (Gmsh element type 2)"));
 }
 
+// Fuzz finding (tests/fuzz/crashes/mesh/crash-d605...): Gmsh 4.8 crashed (SEGV) on an MSH 2
+// element line with fewer node ids than its type needs; io/msh_precheck.cpp now refuses it.
+TEST(RobustInputs, ElementLineShorterThanItsTypeDoesNotCrashGmsh) {
+    const std::string mesh =
+        write_temp("short_element.msh",
+                   "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+                   "$EndNodes\n$Elements\n2\n1 9 2 3 2 1 2\n2 2 2 1 1 1 2 3\n$EndElements\n");
+    EXPECT_THAT(error_of(scenario(mesh)),
+                HasSubstr(mesh + ":12: error: malformed mesh file '" + mesh +
+                          "': element 1 of type 9 with 2 tags needs 11 fields (6 node ids), the "
+                          "line has 7"));
+    const std::string unknown = write_temp(
+        "unknown_type.msh",
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 0 0\n$EndNodes\n$Elements\n1\n"
+        "1 99 0 1\n$EndElements\n");
+    EXPECT_THAT(error_of(scenario(unknown)), HasSubstr("element 1 has unknown element type 99"));
+    const std::string count =
+        write_temp("bad_count.msh",
+                   "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Elements\n5\n1 15 0 1\n$EndElements\n");
+    EXPECT_THAT(error_of(scenario(count)),
+                HasSubstr(":5: error: malformed mesh file '" + count +
+                          "': the $Elements count must be the number of element lines that "
+                          "follow"));
+}
+
 TEST(RobustInputs, ChecksUnknownKeySuggestsTheClosest) {
     const std::string mesh = std::string(FDEM_TEST_DATA_DIR) + "/square_41_ascii.msh";
     EXPECT_THAT(error_of(scenario(mesh, "[checks]\nenergy_tolerence = 0.2\n")),

@@ -111,20 +111,22 @@ Scenario* CheckpointTest::sc_ = nullptr;
 // contact candidates of the checkpoint step carried over.
 TEST_F(CheckpointTest, RestartIsBitwiseIdenticalWithFrictionalContact) {
     const Model& m = model();
-    const int64_t n_total = 500, n_ckpt = 300;  // landing at step ~200 (t ~ 7 ms, dt ~ 33 us)
-
-    State ref = make_state(m, dt());
-    while (ref.step < n_total)
-        step(m, ref);
-
+    // checkpoint 50 steps into the contact (landing at t ~ 10 ms), then 200 more steps
     State a = make_state(m, dt());
-    while (a.step < n_ckpt)
+    while (a.contact.active_contacts == 0 && a.step < 5000)
         step(m, a);
+    for (int i = 0; i < 50; ++i)
+        step(m, a);
+    const int64_t n_ckpt = a.step, n_total = a.step + 200;
     ASSERT_GT(a.contact.active_contacts, 0) << "the checkpoint must be taken during contact";
     bool sliding = false;
     for (const ActiveContact& c : a.contact.active)
         sliding = sliding || c.h.s != 0;
     ASSERT_TRUE(sliding) << "friction springs must carry history across the checkpoint";
+
+    State ref = make_state(m, dt());
+    while (ref.step < n_total)
+        step(m, ref);
 
     RunProgress p;
     p.frame = 7;
@@ -226,6 +228,49 @@ TEST_F(CheckpointTest, RefusesAnotherFormatAndVersion) {
     write_bytes(path, b);
     EXPECT_THAT(restart_error(path, model(), dt()),
                 HasSubstr(std::string("this is fdem ") + FDEM_VERSION + "; rerun from t = 0"));
+    fs::remove(path);
+}
+
+// A field added to State or ContactState changes these sizes: decide whether it carries
+// information between steps, save it in checkpoint.cpp (put_state / read_checkpoint) if so, bump
+// kCheckpointFormat, then update the sizes here (x86-64, libstdc++).
+TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
+    EXPECT_EQ(sizeof(PairHistory), 48u) << "PairHistory changed: update io/checkpoint.cpp";
+    EXPECT_EQ(sizeof(LegacyCouple), 56u) << "LegacyCouple changed: update io/checkpoint.cpp";
+    EXPECT_EQ(sizeof(LegacyTriangleState), 320u)
+        << "LegacyTriangleState changed: update io/checkpoint.cpp";
+    EXPECT_EQ(sizeof(ContactState), 752u) << "ContactState changed: update io/checkpoint.cpp";
+    EXPECT_EQ(sizeof(State), 992u) << "State changed: update io/checkpoint.cpp";
+}
+
+// Baseline A keeps its own history (couples with per-edge sliding distances): same contract.
+TEST(CheckpointLegacy, RestartIsBitwiseIdenticalWithBaselineA) {
+    std::string text = kScene;
+    text.replace(text.find("\"smooth\""), 8, "\"legacy-triangle\"");
+    const Scenario sc = load_scenario_from_string(text, "scene.toml", FDEM_TEST_DATA_DIR);
+    const Model& m = sc.model;
+    const int64_t n_total = 500, n_ckpt = 300;
+    State ref = make_state(m, sc.run.dt);
+    while (ref.step < n_total)
+        step(m, ref);
+    State a = make_state(m, sc.run.dt);
+    while (a.step < n_ckpt)
+        step(m, a);
+    bool sliding = false;
+    for (const LegacyCouple& c : a.contact.legacy.couples)
+        for (Real sl : c.slide)
+            sliding = sliding || sl != 0;
+    ASSERT_TRUE(sliding) << "the checkpoint must carry baseline A sliding history";
+    const std::string path = temp_path("legacy.fdck");
+    write_checkpoint(path, m, a, {});
+    State b = make_state(m, sc.run.dt);
+    RunProgress q;
+    read_checkpoint(path, m, b, q);
+    while (b.step < n_total)
+        step(m, b);
+    EXPECT_TRUE(same_bits(ref.x, b.x));
+    EXPECT_TRUE(same_bits(ref.v, b.v));
+    EXPECT_EQ(std::memcmp(&ref.energy, &b.energy, sizeof(Energy)), 0);
     fs::remove(path);
 }
 
