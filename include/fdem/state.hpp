@@ -18,6 +18,7 @@ struct Energy {
     Real contact = 0;             ///< stored contact potential (path-independent part)
     Real work_gravity = 0;        ///< work done by gravity since t = 0
     Real work_external = 0;       ///< work done by prescribed-velocity supports and kicks
+    Real work_external_pending = 0;  ///< half of the last step's support work, booked next step
     Real dissipated_viscous = 0;  ///< material damping eta D:D and mass damping
     Real dissipated_contact = 0;  ///< contact damping, hysteresis and friction
     Real total() const {

@@ -46,6 +46,17 @@ State make_state(const Model& m, Real dt) {
     for (NodeId i = 0; i < m.num_nodes(); ++i) {
         if (m.bodies[m.node_body[i]].fixed) s.v[i] = {};
     }
+    // a support active at t = 0 imposes its velocity from the start: it is the initial velocity
+    // of its nodes, so E_0 contains their kinetic energy (theory §4; otherwise the jump from v0
+    // to the prescribed value in the first half step would be unaccounted work)
+    for (const BoundaryCondition& bc : m.bcs) {
+        if (!(bc.start <= 0.5 * dt && 0.5 * dt < bc.end)) continue;
+        for (NodeId i : bc.nodes) {
+            if (m.node_inv_mass[i] == 0) continue;
+            if (bc.has_x) s.v[i].x = bc.velocity.x;
+            if (bc.has_y) s.v[i].y = bc.velocity.y;
+        }
+    }
     s.f.assign(m.node_x0.size(), Vec2{});
     s.f_contact.assign(m.node_x0.size(), Vec2{});
     size_t n_bc = 0;
@@ -262,7 +273,10 @@ void step(const Model& m, State& s) {
     s.energy.time = s.time;
     if (s.need_energy) s.energy.strain = pass.strain_energy;  // else stale (State::need_energy)
     s.energy.work_gravity = gravity_work;
-    s.energy.work_external += support_work;
+    // the reaction R^n acts over [t^{n-1/2}, t^{n+1/2}]: half of its work belongs before t^n, the
+    // other half is booked with the next step (theory eq. 4.3)
+    s.energy.work_external += s.energy.work_external_pending + 0.5 * support_work;
+    s.energy.work_external_pending = 0.5 * support_work;
     s.energy.dissipated_viscous += (pass.viscous_power + damping_power) * dt_v;
 
     s.time += dt;

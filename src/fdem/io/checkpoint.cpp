@@ -124,6 +124,7 @@ void put(Sink& o, const Energy& e) {
     put(o, e.contact);
     put(o, e.work_gravity);
     put(o, e.work_external);
+    put(o, e.work_external_pending);
     put(o, e.dissipated_viscous);
     put(o, e.dissipated_contact);
 }
@@ -256,6 +257,7 @@ public:
             get(v.contact);
             get(v.work_gravity);
             get(v.work_external);
+            get(v.work_external_pending);
             get(v.dissipated_viscous);
             get(v.dissipated_contact);
         } else {
