@@ -72,7 +72,7 @@ struct MassDamping {
 /// triangles in one fixed order (color, chunk, triangle) whatever the thread count.
 struct ElementSchedule {
     std::vector<std::array<TriId, 2>> chunk_tris;  ///< [begin, end) per chunk, sorted by color
-    std::vector<BodyId> chunk_body;                ///< body of each chunk
+    std::vector<BodyId> chunk_body;                ///< (first) body of each chunk
     std::vector<int32_t> color_begin;  ///< chunks of color c: [color_begin[c], color_begin[c+1])
     int32_t num_chunks() const { return static_cast<int32_t>(chunk_tris.size()); }
 };

@@ -175,12 +175,38 @@ ElementPass add_internal_forces(const Model& m, State& s) {
 }
 
 ElementSchedule build_element_schedule(const Model& m) {
-    // chunks: at most kChunkTris contiguous triangles of one material of one non-fixed body
+    // chunks: at most kChunkTris contiguous triangles of one material of one non-fixed body.
+    // Runs of small bodies (fewer than kChunkTris triangles each, e.g. particles or blocks of a
+    // granular pack) share a chunk when they are adjacent in triangle ids and of one material:
+    // a chunk per 2-triangle body would make the pass mostly scheduling overhead. Every node
+    // still receives its triangles' forces in triangle order within one chunk, so the forces
+    // are the same bits as with one chunk per body.
     std::vector<std::array<TriId, 2>> chunks;
     std::vector<BodyId> chunk_body;
+    bool open_small = false;  // the last chunk is a run of small bodies that may grow
     for (BodyId b = 0; b < m.num_bodies(); ++b) {
         const Body& body = m.bodies[b];
-        if (body.fixed) continue;
+        if (body.fixed) {
+            open_small = false;
+            continue;
+        }
+        const TriId n = body.tri_end - body.tri_begin;
+        if (n > 0 && n < kChunkTris &&
+            std::all_of(m.tri_material.begin() + body.tri_begin,
+                        m.tri_material.begin() + body.tri_end,
+                        [&](int32_t mt) { return mt == m.tri_material[body.tri_begin]; })) {
+            if (open_small && chunks.back()[1] == body.tri_begin &&
+                chunks.back()[1] - chunks.back()[0] + n <= kChunkTris &&
+                m.tri_material[chunks.back()[0]] == m.tri_material[body.tri_begin]) {
+                chunks.back()[1] = body.tri_end;
+            } else {
+                chunks.push_back({body.tri_begin, body.tri_end});
+                chunk_body.push_back(b);
+                open_small = true;
+            }
+            continue;
+        }
+        open_small = false;
         TriId t = body.tri_begin;
         while (t < body.tri_end) {
             TriId e = t + 1;
