@@ -161,6 +161,13 @@ int run(const RunOptions& opt) {
     bool warned = false;
     try {
         while (s.step < total_steps) {
+            // the strain energy (a log per triangle) only where it is read: the first step (E_0),
+            // every 16th step (energy-balance check), output and checkpoint steps, the last step
+            // (State::need_energy; x and v are bitwise the same either way)
+            const double t_next = s.time + s.dt;
+            s.need_energy = s.step == 0 || (s.step + 1) % 16 == 0 || s.step + 1 == total_steps ||
+                            t_next >= prog.next_output - 0.5 * s.dt ||
+                            (opt.checkpoint_every > 0 && t_next >= next_checkpoint - 0.5 * s.dt);
             fdem::step(m, s);
             const std::string warning = fdem::check_run(m, s, sc.run, prog.energy);
             if (!warning.empty() && !warned) {

@@ -17,7 +17,8 @@ namespace fdem {
 ///     (ContactState::lost_inside > 0): "fail" throws, "warn" returns a warning text;
 ///   * energy: |E_total - E_0| > energy_tolerance * scale, where E_0 is the total after the
 ///     first step and scale the largest of kinetic + strain + contact, |gravity work| and
-///     |external work| seen so far (docs/theory.md §4), throws.
+///     |external work| seen so far (docs/theory.md §4), throws. Checked only after steps that
+///     evaluated the strain energy (State::need_energy; the CLI sets it every 16 steps).
 /// Every SimulationError names step, time, the quantity and a remedy (the stable dt).
 /// Returns "" when there is nothing to warn about.
 std::string check_run(const Model& m, const State& s, const RunSettings& run, EnergyMonitor& mon);
