@@ -1,10 +1,13 @@
 // Per-phase timing of the step on a contact scene (docs/performance.md): the phase functions of
 // step() called one by one on a copy of a warmed-up state, so step() itself is not instrumented.
+// Times are process CPU seconds (CLOCK_PROCESS_CPUTIME_ID), like Google Benchmark's CPU time:
+// on the shared development machine wall time is inflated several-fold by other processes. With
+// one thread this is the phase's time on an idle core; with two it is the sum over both.
 #pragma once
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
+#include <ctime>
 
 #include "contact/contact.hpp"
 #include "detect/broad_phase.hpp"
@@ -13,7 +16,7 @@
 
 namespace fdem::bench {
 
-/// Seconds per call of each phase, measured on a copy of s (s is not changed).
+/// CPU seconds per call of each phase, measured on a copy of s (s is not changed).
 struct PhaseTimes {
     double element = 0;     ///< add_internal_forces (F, stress, energy, nodal forces)
     double broad = 0;       ///< update_virtual_nodes + find_candidates (one detection)
@@ -23,11 +26,15 @@ struct PhaseTimes {
 };
 
 inline PhaseTimes time_phases(const Model& m, const State& s, int reps) {
-    using clock = std::chrono::steady_clock;
     State c = s;  // copy: the phases below must not change the benchmarked trajectory
-    auto secs = [](clock::time_point a, clock::time_point b) {
-        return std::chrono::duration<double>(b - a).count();
+    struct clock {
+        static double now() {
+            timespec ts{};
+            clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+            return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+        }
     };
+    auto secs = [](double a, double b) { return b - a; };
     PhaseTimes p;
     double best_e = 1e30, best_b = 1e30, best_n = 1e30;
     for (int r = 0; r < reps; ++r) {
