@@ -56,7 +56,8 @@ BENCHMARK(BM_DeformationStep)
 BENCHMARK(BM_DeformationStepShuffled)
     ->Args({1 << 20, 1})
     ->Args({1 << 20, 2})
-    ->UseRealTime()->Unit(benchmark::kMicrosecond);
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace fdem

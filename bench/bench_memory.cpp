@@ -38,7 +38,8 @@ void BM_Memory(benchmark::State& st) {
         o.gravity = o.clamp = true;
         const Model m = scenes::make_block(o);
         State s = make_state(m, 0.9 * stable_time_step(m));
-        for (int k = 0; k < 3; ++k) step(m, s);
+        for (int k = 0; k < 3; ++k)
+            step(m, s);
         const double nt = m.num_tris();
         st.counters["peak_B_per_tri"] = peak_rss_bytes() / nt;
         st.counters["live_B_per_tri"] = (current_rss_bytes() - base) / nt;

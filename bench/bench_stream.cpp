@@ -21,10 +21,12 @@ void BM_Triad(benchmark::State& st) {
     const double s = 3.0;
     // first touch by the threads that will use the pages
 #pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t i = 0; i < n; ++i) pa[i] = 0.0;
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+        pa[i] = 0.0;
     for (auto _ : st) {
 #pragma omp parallel for schedule(static)
-        for (std::ptrdiff_t i = 0; i < n; ++i) pa[i] = pb[i] + s * pc[i];
+        for (std::ptrdiff_t i = 0; i < n; ++i)
+            pa[i] = pb[i] + s * pc[i];
         benchmark::ClobberMemory();
     }
     st.SetBytesProcessed(st.iterations() * n * 24);
@@ -32,9 +34,9 @@ void BM_Triad(benchmark::State& st) {
 }
 
 BENCHMARK(BM_Triad)
-    ->Args({1 << 13, 1})   // 192 KB: L2
+    ->Args({1 << 13, 1})  // 192 KB: L2
     ->Args({1 << 13, 2})
-    ->Args({1 << 24, 1})   // 384 MB: main memory
+    ->Args({1 << 24, 1})  // 384 MB: main memory
     ->Args({1 << 24, 2})
     ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
