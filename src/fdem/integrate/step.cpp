@@ -197,7 +197,10 @@ void step(const Model& m, State& s) {
     }
 
     // 5. gravity and mass damping; 6. velocity update; 7. energies at t^n
-    const bool mass_damped = s.time < m.mass_damping.until && m.mass_damping.coefficient > 0;
+    // judged at mid-step like kicks and supports, so damping that ends when a kick fires does not
+    // also damp the kicked velocity
+    const bool mass_damped =
+        s.time + 0.5 * dt < m.mass_damping.until && m.mass_damping.coefficient > 0;
     const Real c = m.mass_damping.coefficient;
     const Vec2 g = m.gravity;
     // the first step starts from v^0 and advances half a step to v^{1/2} (theory eq. 5.1), so a
