@@ -15,7 +15,7 @@ namespace {
 //   single-triangle target bodies, apex pushed into a one-element-thick strip (all of the strip
 //   is boundary layer; its interior edges are chords with virtual mid-nodes)
 //
-//        /\    /\    /\
+//        /\    /\    /\ .
 //   +---/--\--/--\--/--\---+   y = 1
 //   |  / .  \/ .  \/ .  \  |   (apex inside)
 //   +----------------------+   y = 0

@@ -88,7 +88,9 @@ TEST(ContactTopology, FourByFourSquare) {
     for (NodeId i = 0; i < m.num_nodes(); ++i) {
         const Vec2 x = m.node_x0[i];
         const Real exact = std::min({x.x, x.y, 4 - x.x, 4 - x.y});
-        if (exact == 1.0) EXPECT_DOUBLE_EQ(m.contact.node_dist[i], 1.0) << i;
+        if (exact == 1.0) {
+            EXPECT_DOUBLE_EQ(m.contact.node_dist[i], 1.0) << i;
+        }
     }
     expect_ccw(m);
 }
