@@ -24,8 +24,8 @@ struct Material {
     Real youngs_modulus = 0;  ///< E [Pa], > 0
     Real poisson_ratio = 0;   ///< nu [-], in [0, 0.5)
     PlaneMode plane = PlaneMode::Strain;
-    Real viscosity = 0;       ///< eta [Pa s] of the viscous stress eta*D (theory §2.3), >= 0
-    Real damping_ratio = 0;   ///< xi [-]: adds eta = 2 h xi sqrt(E rho) per element (theory §2.3)
+    Real viscosity = 0;      ///< eta [Pa s] of the viscous stress eta*D (theory §2.3), >= 0
+    Real damping_ratio = 0;  ///< xi [-]: adds eta = 2 h xi sqrt(E rho) per element (theory §2.3)
     // derived at build time (theory eq. 2.5): effective 2-D Lame constants
     Real lambda = 0;  ///< [Pa]; for plane stress the reduced 2 lambda mu / (lambda + 2 mu)
     Real mu = 0;      ///< shear modulus [Pa]
@@ -33,10 +33,10 @@ struct Material {
 
 /// One discrete element: a connected set of triangles with its own nodes.
 struct Body {
-    std::string name;       ///< scenario body name (several bodies may share it: one per component)
-    int32_t group = 0;      ///< index of the scenario [[body]] entry it came from
-    int32_t material = 0;   ///< index into Model::materials
-    bool fixed = false;     ///< every node held at its initial position
+    std::string name;      ///< scenario body name (several bodies may share it: one per component)
+    int32_t group = 0;     ///< index of the scenario [[body]] entry it came from
+    int32_t material = 0;  ///< index into Model::materials
+    bool fixed = false;    ///< every node held at its initial position
     NodeId node_begin = 0, node_end = 0;  ///< nodes [begin, end)
     TriId tri_begin = 0, tri_end = 0;     ///< triangles [begin, end)
 };
@@ -46,9 +46,9 @@ struct BoundaryCondition {
     std::string name;           ///< node-set name, for messages
     std::vector<NodeId> nodes;  ///< sorted, unique
     bool has_x = false, has_y = false;
-    Vec2 velocity;                                        ///< [m/s]
-    Real start = 0;                                       ///< active from this time [s]
-    Real end = std::numeric_limits<Real>::infinity();     ///< active until this time [s]
+    Vec2 velocity;                                     ///< [m/s]
+    Real start = 0;                                    ///< active from this time [s]
+    Real end = std::numeric_limits<Real>::infinity();  ///< active until this time [s]
 };
 
 /// A one-time velocity assignment to whole scenario body entries at a given time
@@ -57,7 +57,7 @@ struct VelocityKick {
     int32_t group = 0;  ///< scenario body entry
     Real time = 0;      ///< [s]
     bool has_x = false, has_y = false;
-    Vec2 velocity;      ///< [m/s]
+    Vec2 velocity;  ///< [m/s]
 };
 
 /// Global damping used only to reach equilibrium: f = -c m v while t < until (spec §3.2).
@@ -79,19 +79,19 @@ struct ElementSchedule {
 
 struct Model {
     // nodes (num_nodes())
-    std::vector<Vec2> node_x0;         ///< reference position [m]
-    std::vector<Vec2> node_v0;         ///< initial velocity [m/s]
-    std::vector<Real> node_mass;       ///< lumped mass per unit thickness [kg/m]
-    std::vector<Real> node_inv_mass;   ///< 1/mass [m/kg]; 0 for nodes of fixed bodies
-    std::vector<BodyId> node_body;     ///< owning body
+    std::vector<Vec2> node_x0;        ///< reference position [m]
+    std::vector<Vec2> node_v0;        ///< initial velocity [m/s]
+    std::vector<Real> node_mass;      ///< lumped mass per unit thickness [kg/m]
+    std::vector<Real> node_inv_mass;  ///< 1/mass [m/kg]; 0 for nodes of fixed bodies
+    std::vector<BodyId> node_body;    ///< owning body
 
     // triangles (num_tris()), reference orientation counter-clockwise
     std::vector<std::array<NodeId, 3>> tri_nodes;
     std::vector<BodyId> tri_body;
     std::vector<int32_t> tri_material;
-    std::vector<Mat2> tri_dm_inv;      ///< inverse reference edge matrix [X1-X0, X2-X0]^-1 [1/m]
-    std::vector<Real> tri_area0;       ///< reference area [m^2]
-    std::vector<Real> tri_eta;         ///< viscosity eta of the element [Pa s]
+    std::vector<Mat2> tri_dm_inv;  ///< inverse reference edge matrix [X1-X0, X2-X0]^-1 [1/m]
+    std::vector<Real> tri_area0;   ///< reference area [m^2]
+    std::vector<Real> tri_eta;     ///< viscosity eta of the element [Pa s]
 
     std::vector<Body> bodies;
     std::vector<Material> materials;
@@ -100,7 +100,7 @@ struct Model {
     std::vector<BoundaryCondition> bcs;
     std::vector<VelocityKick> kicks;
     MassDamping mass_damping;
-    Vec2 gravity;                      ///< [m/s^2]
+    Vec2 gravity;  ///< [m/s^2]
 
     ContactModel contact;              ///< contact parameters and topology (contact_model.hpp)
     ElementSchedule element_schedule;  ///< derived: parallel element loop (element/cst.hpp)

@@ -10,9 +10,9 @@
 namespace fdem {
 
 struct OutputSettings {
-    Real interval = 0;               ///< simulated time between output frames [s]; 0 = 100 frames
-    bool vtu = true;                 ///< write VTU frames and a PVD series
-    std::string dir = "out";         ///< output folder (relative to the working directory)
+    Real interval = 0;        ///< simulated time between output frames [s]; 0 = 100 frames
+    bool vtu = true;          ///< write VTU frames and a PVD series
+    std::string dir = "out";  ///< output folder (relative to the working directory)
 };
 
 /// What the [checks] table does when a node passes through the contact layer.
@@ -25,12 +25,12 @@ struct CheckSettings {
 };
 
 struct RunSettings {
-    Real dt = 0;               ///< time step [s] actually used
-    bool dt_auto = false;      ///< dt = "auto" was given
-    Real dt_fraction = 0.5;    ///< safety fraction of the stable limit used by dt = "auto"
-    Real end_time = 0;         ///< [s]
-    Real stable_dt = 0;        ///< stable limit computed at load [s]
-    TriId limiting_tri = kNone;///< element setting the stable limit
+    Real dt = 0;                 ///< time step [s] actually used
+    bool dt_auto = false;        ///< dt = "auto" was given
+    Real dt_fraction = 0.5;      ///< safety fraction of the stable limit used by dt = "auto"
+    Real end_time = 0;           ///< [s]
+    Real stable_dt = 0;          ///< stable limit computed at load [s]
+    TriId limiting_tri = kNone;  ///< element setting the stable limit
     OutputSettings output;
     CheckSettings checks;
 };

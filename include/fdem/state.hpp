@@ -12,15 +12,15 @@ namespace fdem {
 /// Energy bookkeeping per unit thickness [J/m] (docs/theory.md §4, spec §3.5).
 /// Balance: kinetic + strain + contact - work_gravity - work_external + dissipated == const.
 struct Energy {
-    Real time = 0;                ///< t^n at which the energies below were evaluated [s]
-    Real kinetic = 0;             ///< sum 1/2 m |v^n|^2 with v^n = (v^{n-1/2} + v^{n+1/2})/2
-    Real strain = 0;              ///< sum A0 W(F) (stale when State::need_energy was false)
-    Real contact = 0;             ///< stored contact potential (path-independent part)
-    Real work_gravity = 0;        ///< work done by gravity since t = 0
-    Real work_external = 0;       ///< work done by prescribed-velocity supports and kicks
+    Real time = 0;                   ///< t^n at which the energies below were evaluated [s]
+    Real kinetic = 0;                ///< sum 1/2 m |v^n|^2 with v^n = (v^{n-1/2} + v^{n+1/2})/2
+    Real strain = 0;                 ///< sum A0 W(F) (stale when State::need_energy was false)
+    Real contact = 0;                ///< stored contact potential (path-independent part)
+    Real work_gravity = 0;           ///< work done by gravity since t = 0
+    Real work_external = 0;          ///< work done by prescribed-velocity supports and kicks
     Real work_external_pending = 0;  ///< half of the last step's support work, booked next step
-    Real dissipated_viscous = 0;  ///< material damping eta D:D and mass damping
-    Real dissipated_contact = 0;  ///< contact damping, hysteresis and friction
+    Real dissipated_viscous = 0;     ///< material damping eta D:D and mass damping
+    Real dissipated_contact = 0;     ///< contact damping, hysteresis and friction
     Real total() const {
         return kinetic + strain + contact - work_gravity - work_external + dissipated_viscous +
                dissipated_contact;
@@ -32,9 +32,9 @@ struct State {
     Real time = 0;     ///< simulated time t^n [s]
     Real dt = 0;       ///< time step [s]
 
-    std::vector<Vec2> x;  ///< positions x^n [m]
-    std::vector<Vec2> v;  ///< velocities v^{n-1/2} before a step, v^{n+1/2} after [m/s]
-    std::vector<Vec2> f;  ///< total nodal force of the last step [N/m]
+    std::vector<Vec2> x;          ///< positions x^n [m]
+    std::vector<Vec2> v;          ///< velocities v^{n-1/2} before a step, v^{n+1/2} after [m/s]
+    std::vector<Vec2> f;          ///< total nodal force of the last step [N/m]
     std::vector<Vec2> f_contact;  ///< contact part of f [N/m]
 
     Energy energy;

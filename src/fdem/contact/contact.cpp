@@ -366,13 +366,14 @@ Real contact_stable_dt(const Model& m) {
         grad2 = std::max(grad2, r * r);
     }
 
-    // mass ratio of the pair spring (theory eq. 6.15): the target force (m_j/mbar) k g' d also acts,
-    // spread by N_i <= 1, on a contactor node of mass m_i, so the two-mass system has
-    // omega^2 = (k g' / mbar)(1 + m_j / m_i) (the 1/m_j term vanishes for a fixed target, the
-    // m_j/m_i term does not). Bound it by the heaviest target over the lightest movable contactor
-    // node: with heavy base nodes pushing light block nodes the old factor 2 was unstable.
+    // mass ratio of the pair spring (theory eq. 6.15): the target force (m_j/mbar) k g' d also
+    // acts, spread by N_i <= 1, on a contactor node of mass m_i, so the two-mass system has omega^2
+    // = (k g' / mbar)(1 + m_j / m_i) (the 1/m_j term vanishes for a fixed target, the m_j/m_i term
+    // does not). Bound it by the heaviest target over the lightest movable contactor node: with
+    // heavy base nodes pushing light block nodes the old factor 2 was unstable.
     Real m_target_max = 0, m_contactor_min = std::numeric_limits<Real>::infinity();
-    for (NodeId j : cm.boundary_nodes) m_target_max = std::max(m_target_max, m.node_mass[j]);
+    for (NodeId j : cm.boundary_nodes)
+        m_target_max = std::max(m_target_max, m.node_mass[j]);
     for (int32_t t = 0; t < cm.num_sub_tris(); ++t) {
         for (NodeId i : cm.sub_tri[t]) {
             if (i >= cm.num_real_nodes || m.node_inv_mass[i] == 0) continue;

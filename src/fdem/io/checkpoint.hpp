@@ -27,7 +27,7 @@ namespace fdem {
 
 /// Version of the checkpoint layout; bump it whenever the payload changes.
 constexpr uint32_t kCheckpointFormat = 3;  // 2: baseline A couples (ContactState::legacy)
-                                            // 3: Energy::work_external_pending
+                                           // 3: Energy::work_external_pending
 
 /// Running energy-balance monitor (the [checks] energy test of the CLI), kept in checkpoints so
 /// a restarted run measures the drift from the same E_0.

@@ -62,9 +62,10 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
         if (!(std::abs(area) > 1e-12 * l2)) {
             throw InputError(
                 {mesh.file, 0, 0}, fmt::format("triangle {}", t + 1),
-                fmt::format("triangle {} (nodes {}, {}, {}) of body \"{}\" is degenerate (area {:.3g} "
-                            "m^2); remove it or fix the mesh (e.g. remesh with gmsh)",
-                            t + 1, n[0] + 1, n[1] + 1, n[2] + 1, opt.name, area));
+                fmt::format(
+                    "triangle {} (nodes {}, {}, {}) of body \"{}\" is degenerate (area {:.3g} "
+                    "m^2); remove it or fix the mesh (e.g. remesh with gmsh)",
+                    t + 1, n[0] + 1, n[1] + 1, n[2] + 1, opt.name, area));
         }
     }
 
@@ -131,7 +132,8 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
 }
 
 void finalize_model(Model& m) {
-    for (Material& mat : m.materials) compute_lame(mat);
+    for (Material& mat : m.materials)
+        compute_lame(mat);
     renumber_spatially(m);  // first: everything below is derived from the final numbering
 
     const size_t nn = static_cast<size_t>(m.num_nodes());
@@ -151,7 +153,8 @@ void finalize_model(Model& m) {
         const Material& mat = m.materials[m.tri_material[t]];
 
         // lumped mass: rho A0 / 3 to each node (theory eq. 3.4)
-        for (int k = 0; k < 3; ++k) m.node_mass[n[k]] += mat.density * m.tri_area0[t] / 3.0;
+        for (int k = 0; k < 3; ++k)
+            m.node_mass[n[k]] += mat.density * m.tri_area0[t] / 3.0;
 
         // element viscosity: eta + 2 h xi sqrt(E rho), h = smallest altitude (theory eq. 2.6)
         const Real lmax = std::max({norm(X1 - X0), norm(X2 - X1), norm(X0 - X2)});

@@ -31,7 +31,9 @@ Model perturbed_patch(Real nu, PlaneMode plane) {
     return m;
 }
 
-bool on_boundary(Vec2 p) { return p.x < 1e-12 || p.y < 1e-12 || p.x > 1 - 1e-12 || p.y > 1 - 1e-12; }
+bool on_boundary(Vec2 p) {
+    return p.x < 1e-12 || p.y < 1e-12 || p.x > 1 - 1e-12 || p.y > 1 - 1e-12;
+}
 
 std::vector<Vec2> forces(const Model& m, const std::vector<Vec2>& x, ElementPass* pass = nullptr) {
     std::vector<Vec2> f(x.size()), v(x.size());
@@ -44,7 +46,8 @@ TEST(Cst, PatchTestUniformStretchGivesUniformStressAndNoInteriorForce) {
     const Model m = perturbed_patch(0.3, PlaneMode::Strain);
     const Mat2 F = {1.02, 0.01, -0.005, 0.97};
     std::vector<Vec2> x(m.node_x0.size());
-    for (size_t i = 0; i < x.size(); ++i) x[i] = F * m.node_x0[i];
+    for (size_t i = 0; i < x.size(); ++i)
+        x[i] = F * m.node_x0[i];
 
     const std::vector<Vec2> f = forces(m, x);
     const Mat2 sigma = cauchy_stress(m.materials[0], F);
@@ -68,10 +71,12 @@ TEST(Cst, RigidRotationBy90DegreesGivesZeroStressAndForce) {
     const Model m = perturbed_patch(0.25, PlaneMode::Strain);
     const Mat2 R = {0, -1, 1, 0};
     std::vector<Vec2> x(m.node_x0.size());
-    for (size_t i = 0; i < x.size(); ++i) x[i] = R * m.node_x0[i] + Vec2{3, -2};
+    for (size_t i = 0; i < x.size(); ++i)
+        x[i] = R * m.node_x0[i] + Vec2{3, -2};
     ElementPass pass;
     const std::vector<Vec2> f = forces(m, x, &pass);
-    for (const Vec2& fi : f) EXPECT_LT(norm(fi), 1e-6);  // E = 1e9: 1e-6 N/m is 1e-15 relative
+    for (const Vec2& fi : f)
+        EXPECT_LT(norm(fi), 1e-6);  // E = 1e9: 1e-6 N/m is 1e-15 relative
     EXPECT_LT(std::abs(pass.strain_energy), 1e-6);
     for (TriId t = 0; t < m.num_tris(); ++t) {
         const Mat2 s = cauchy_stress(m.materials[0], deformation_gradient(m, x.data(), t));
@@ -85,7 +90,8 @@ TEST(Cst, NodalForcesAreMinusTheGradientOfTheStrainEnergy) {
         std::mt19937 rng(11);
         std::uniform_real_distribution<Real> u(-0.03, 0.03);
         std::vector<Vec2> x(m.node_x0.size());
-        for (size_t i = 0; i < x.size(); ++i) x[i] = m.node_x0[i] + Vec2{u(rng), u(rng)};
+        for (size_t i = 0; i < x.size(); ++i)
+            x[i] = m.node_x0[i] + Vec2{u(rng), u(rng)};
 
         const std::vector<Vec2> f = forces(m, x);
         auto energy = [&](const std::vector<Vec2>& y) {
@@ -95,7 +101,8 @@ TEST(Cst, NodalForcesAreMinusTheGradientOfTheStrainEnergy) {
         };
         const Real h = 1e-6;
         Real fmax = 0;
-        for (const Vec2& fi : f) fmax = std::max(fmax, norm(fi));
+        for (const Vec2& fi : f)
+            fmax = std::max(fmax, norm(fi));
         for (size_t i = 0; i < x.size(); ++i) {
             for (int c = 0; c < 2; ++c) {
                 std::vector<Vec2> xp = x, xm = x;

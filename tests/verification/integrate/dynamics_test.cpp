@@ -23,7 +23,8 @@ TEST(Dynamics, FreeFallMatchesTheParabolaAtTwoTimeSteps) {
         finalize_model(m);
         State s = make_state(m, dt);
         const int n = static_cast<int>(std::lround(0.1 / dt));
-        for (int k = 0; k < n; ++k) step(m, s);
+        for (int k = 0; k < n; ++k)
+            step(m, s);
         const Real t = s.time;
         ASSERT_NEAR(t, 0.1, 1e-12);
         for (NodeId i = 0; i < m.num_nodes(); ++i) {
@@ -41,7 +42,7 @@ TEST(Dynamics, FreeFallMatchesTheParabolaAtTwoTimeSteps) {
 // travels at c = sqrt(E/rho) (theory §3.5). The free end keeps V until the wave from the clamp
 // arrives at t = L/c, then its velocity drops to -V.
 struct BarResult {
-    Real arrival = -1;       // first time the free-end velocity falls below 0 [s]
+    Real arrival = -1;          // first time the free-end velocity falls below 0 [s]
     Real max_energy_error = 0;  // max |E_total - E_0| / E_0 over 10 transits
 };
 
@@ -55,23 +56,27 @@ BarResult run_bar(Real dt_fraction) {
     clamp.nodes = scenes::select_nodes(m, 0, [](Vec2 p) { return p.x < 1e-12; });
     clamp.has_x = clamp.has_y = true;
     m.bcs.push_back(clamp);
-    for (NodeId i : clamp.nodes) m.node_v0[i] = {};
+    for (NodeId i : clamp.nodes)
+        m.node_v0[i] = {};
     finalize_model(m);
 
     const Real dt = dt_fraction * stable_time_step(m);
     State s = make_state(m, dt);
-    const std::vector<NodeId> tip = scenes::select_nodes(m, 0, [&](Vec2 p) { return p.x > L - 1e-12; });
+    const std::vector<NodeId> tip =
+        scenes::select_nodes(m, 0, [&](Vec2 p) { return p.x > L - 1e-12; });
     const Real c = std::sqrt(E / rho);
     BarResult r;
     const Real E0 = 0.5 * V * V * [&] {
         Real mass = 0;
-        for (NodeId i = 0; i < m.num_nodes(); ++i) mass += m.node_mass[i] * (m.node_v0[i].x != 0);
+        for (NodeId i = 0; i < m.num_nodes(); ++i)
+            mass += m.node_mass[i] * (m.node_v0[i].x != 0);
         return mass;
     }();
     while (s.time < 10 * L / c) {
         step(m, s);
         Real vtip = 0;
-        for (NodeId i : tip) vtip += s.v[i].x / static_cast<Real>(tip.size());
+        for (NodeId i : tip)
+            vtip += s.v[i].x / static_cast<Real>(tip.size());
         if (r.arrival < 0 && vtip < 0) r.arrival = s.time;
         r.max_energy_error = std::max(r.max_energy_error, std::abs(s.energy.total() - E0) / E0);
     }
@@ -86,8 +91,8 @@ TEST(Dynamics, BarWaveSpeedAndEnergyConservationAtTwoTimeSteps) {
         RecordProperty("c_measured_" + std::to_string(frac), std::to_string(c_measured));
         std::printf("dt = %.2f dt_stable: c = %.2f m/s (exact %.2f), energy error %.3e\n", frac,
                     c_measured, c, r.max_energy_error);
-        EXPECT_NEAR(c_measured, c, 0.02 * c);       // issue: within 2 %
-        EXPECT_LT(r.max_energy_error, 0.005);        // issue: within 0.5 % over 10 transits
+        EXPECT_NEAR(c_measured, c, 0.02 * c);  // issue: within 2 %
+        EXPECT_LT(r.max_energy_error, 0.005);  // issue: within 0.5 % over 10 transits
     }
 }
 
