@@ -31,12 +31,30 @@ struct Material {
     Real mu = 0;      ///< shear modulus [Pa]
 };
 
+/// Finite-element formulation of a body's triangles (docs/theory.md §3; spec §3.3).
+enum class ElementKind : uint8_t {
+    Cst,         ///< 3-node constant-strain triangle, finite strain (theory §3)
+    Composite6,  ///< 6-node composite triangle (Lei et al. 2016): four CST sub-triangles with
+                 ///< the volumetric part taken from the whole composite (spec §3.3)
+};
+
 /// One discrete element: a connected set of triangles with its own nodes.
+///
+/// Composite6 bodies: the body's triangles come in groups of four consecutive ids, one composite
+/// element per group (group c = triangles tri_begin + 4c ... tri_begin + 4c + 3). With the
+/// paper's perimeter numbering n1..n6 (corners n1, n3, n5; mid-edge n2 on n1-n3, n4 on n3-n5,
+/// n6 on n5-n1), the four sub-triangles are, in this order (paper §2.1, spec §3.3):
+///   (n1, n2, n6), (n2, n3, n4), (n6, n4, n5), (n2, n4, n6)
+/// all counter-clockwise in the reference configuration. So n1 = tri[0][0], n2 = tri[0][1],
+/// n6 = tri[0][2], n3 = tri[1][1], n4 = tri[1][2], n5 = tri[2][2]. Every per-triangle array of
+/// the Model (dm_inv, area0, eta, ...) then describes the sub-triangles; masses are lumped per
+/// sub-triangle; contact and output see the sub-triangles.
 struct Body {
     std::string name;      ///< scenario body name (several bodies may share it: one per component)
     int32_t group = 0;     ///< index of the scenario [[body]] entry it came from
     int32_t material = 0;  ///< index into Model::materials
     bool fixed = false;    ///< every node held at its initial position
+    ElementKind element = ElementKind::Cst;  ///< formulation of the triangles (see above)
     NodeId node_begin = 0, node_end = 0;  ///< nodes [begin, end)
     TriId tri_begin = 0, tri_end = 0;     ///< triangles [begin, end)
 };
