@@ -2,6 +2,7 @@
 // lumped masses, boundary-condition node arrays and contact topology.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,13 +17,20 @@ struct BodyOptions {
     int32_t material = 0;  ///< index into Model::materials (must exist)
     bool fixed = false;    ///< all nodes held fixed
     Vec2 velocity;         ///< initial velocity [m/s]
+    /// Element formulation; nullopt takes it from the mesh: Composite6 for 6-node triangles,
+    /// Cst for 3-node ones. Cst on a 6-node mesh splits every 6-node triangle into its four
+    /// sub-triangles as plain CSTs; Composite6 on a 3-node mesh is an InputError.
+    std::optional<ElementKind> element;
 };
 
 /// Append the triangles tri_ids of mesh (indices into mesh.tris) as one or more bodies: every
 /// connected component (triangles sharing an edge or a node) becomes its own body with its own
-/// nodes. Triangles are re-oriented counter-clockwise. Returns, per mesh node, the model node
-/// created for it (kNone if these triangles do not use it).
-/// Throws InputError naming mesh.file and the element for a degenerate (zero-area) triangle.
+/// nodes. Triangles are re-oriented counter-clockwise. A 6-node triangle of a second-order mesh
+/// becomes four sub-triangles in the order and numbering of the Body contract (model.hpp), for
+/// either element kind. Returns, per mesh node, the model node created for it (kNone if these
+/// triangles do not use it).
+/// Throws InputError naming mesh.file and the element for a degenerate (zero-area) triangle or
+/// sub-triangle (a misplaced mid-edge node), and for Composite6 requested on a 3-node mesh.
 std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector<int32_t>& tri_ids,
                                const BodyOptions& opt);
 

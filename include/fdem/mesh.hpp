@@ -21,12 +21,22 @@ struct PhysicalGroup {
 
 /// A triangle mesh as it comes from a file, before it is split into bodies.
 /// Orientation is not yet fixed; node ids are 0-based indices into nodes.
+///
+/// Second-order meshes (Gmsh 6-node triangles, type 9, and 3-node lines, type 8) keep the
+/// corners in tris / lines, so everything that selects elements works unchanged, and add the
+/// mid-edge nodes in the parallel arrays tri_mid / line_mid. Gmsh's node order of a 6-node
+/// triangle is corners 0, 1, 2 then mid-edge nodes 3 (edge 0-1), 4 (edge 1-2), 5 (edge 2-0):
+/// tris[t] = {g0, g1, g2}, tri_mid[t] = {g3, g4, g5}. A mesh is entirely first or second order.
 struct MeshData {
     std::string file;  ///< for messages
     std::vector<Vec2> nodes;
-    std::vector<std::array<int32_t, 3>> tris;
+    std::vector<std::array<int32_t, 3>> tris;  ///< corner nodes
+    /// Mid-edge nodes of 6-node triangles, parallel to tris: tri_mid[t][k] lies on the edge
+    /// tris[t][k] - tris[t][(k + 1) % 3]. Empty for a first-order mesh.
+    std::vector<std::array<int32_t, 3>> tri_mid;
     std::vector<int32_t> tri_tag;               ///< first physical tag of each triangle (0 = none)
-    std::vector<std::array<int32_t, 2>> lines;  ///< 2-node line elements
+    std::vector<std::array<int32_t, 2>> lines;  ///< end nodes of line elements
+    std::vector<int32_t> line_mid;  ///< mid node of 3-node lines, parallel to lines (or empty)
     std::vector<int32_t> line_tag;
     std::vector<int32_t> points;  ///< 1-node point elements
     std::vector<int32_t> point_tag;
@@ -35,19 +45,31 @@ struct MeshData {
     /// use this (not the *_tag arrays) to select elements by group.
     std::vector<PhysicalGroup> groups;
 
-    /// Sorted, unique mesh node ids used by the elements of a group.
+    /// True for a mesh of 6-node triangles (tri_mid filled).
+    bool second_order() const { return !tri_mid.empty(); }
+
+    /// Sorted, unique mesh node ids used by the elements of a group (mid-edge nodes included).
     std::vector<int32_t> group_nodes(const PhysicalGroup& g) const;
 };
 
 /// Read a mesh through the gmsh library: .msh (2.2/4.1, ASCII or binary) or .geo (meshed now
-/// with characteristic length mesh_size [m]; <= 0 keeps the .geo's own sizes).
-/// Throws InputError naming the file on any failure.
-MeshData read_mesh(const std::string& path, Real mesh_size = 0);
+/// with characteristic length mesh_size [m]; <= 0 keeps the .geo's own sizes). order = 2 makes
+/// a .geo mesh second order (6-node triangles, gmsh::model::mesh::setOrder(2) after generate);
+/// a .msh file keeps the order it was written with. Accepted elements: 3- and 6-node
+/// triangles, 2- and 3-node lines, points. Throws InputError naming the file on any failure.
+MeshData read_mesh(const std::string& path, Real mesh_size = 0, int order = 1);
 
 /// Structured rectangle [x0, x0+w] x [y0, y0+h] with nx x ny cells, each split into two
 /// right triangles (alternating diagonals when alternate = true). Physical groups (dim 1):
 /// "bottom", "right", "top", "left"; triangles carry tag 1 named "domain".
 MeshData make_rectangle_mesh(Real x0, Real y0, Real w, Real h, int nx, int ny,
                              bool alternate = false);
+
+/// Second-order version of make_rectangle_mesh: the same 2 nx ny corner triangles (same
+/// diagonals), each a 6-node triangle with straight edges and mid-edge nodes at the edge
+/// midpoints (tri_mid filled; boundary lines are 3-node lines with line_mid). The corner nodes
+/// keep the ids of make_rectangle_mesh (j (nx + 1) + i); mid-edge nodes follow.
+MeshData make_rectangle_mesh_order2(Real x0, Real y0, Real w, Real h, int nx, int ny,
+                                    bool alternate = false);
 
 }  // namespace fdem

@@ -42,6 +42,27 @@ inline std::vector<NodeId> add_rectangle(Model& m, Real x0, Real y0, Real w, Rea
     return add_bodies(m, mesh, all, opt);
 }
 
+/// Add a structured rectangle body of 6-node triangles (make_rectangle_mesh_order2, same
+/// corners and diagonals as add_rectangle) as composite elements, or as four CSTs per 6-node
+/// triangle with element = ElementKind::Cst (issue #7). Returns the mesh-node -> model-node map.
+inline std::vector<NodeId> add_rectangle_order2(Model& m, Real x0, Real y0, Real w, Real h, int nx,
+                                                int ny, int32_t material,
+                                                ElementKind element = ElementKind::Composite6,
+                                                bool fixed = false, Vec2 velocity = {},
+                                                bool alternate = false, std::string name = "rect") {
+    const MeshData mesh = make_rectangle_mesh_order2(x0, y0, w, h, nx, ny, alternate);
+    std::vector<int32_t> all(mesh.tris.size());
+    for (size_t i = 0; i < all.size(); ++i)
+        all[i] = static_cast<int32_t>(i);
+    BodyOptions opt;
+    opt.name = std::move(name);
+    opt.material = material;
+    opt.fixed = fixed;
+    opt.velocity = velocity;
+    opt.element = element;
+    return add_bodies(m, mesh, all, opt);
+}
+
 /// Nodes of body b whose reference position satisfies pred.
 template <class Pred>
 std::vector<NodeId> select_nodes(const Model& m, BodyId b, Pred pred) {

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "element/composite.hpp"
 #include "material/hyperelastic.hpp"
 
 namespace fdem {
@@ -23,6 +24,9 @@ namespace {
 /// Triangles per chunk. Small enough that a 16k-triangle (cache-resident) mesh still gives two
 /// threads enough chunks per color, large enough that the per-chunk overhead is negligible.
 constexpr TriId kChunkTris = 256;
+// chunks start at a body's first triangle and hold a multiple of 4 triangles (or the rest of
+// the body), so they never split a composite element (model.hpp layout)
+static_assert(kChunkTris % 4 == 0);
 
 /// Below this many chunks (8192 triangles) the pass runs on one thread: a fork/join and one
 /// barrier per color cost more than the work they would share.
@@ -93,6 +97,11 @@ void element_range(const Model& m, const Vec2* __restrict x, const Vec2* __restr
 // Dispatch a range of triangles of one material on whether any of them is viscous.
 void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
                     bool with_energy, ElementPass& out) {
+    // composite bodies: selective-integration kernel (theory §3.5); chunks never mix kinds
+    if (m.bodies[m.tri_body[begin]].element == ElementKind::Composite6) {
+        add_composite_forces(m, x, v, f, begin, end, with_energy, out);
+        return;
+    }
     const Material& mt = m.materials[m.tri_material[begin]];
     // tri_eta = eta + 2 h xi sqrt(E rho) (theory eq. 2.6) is > 0 exactly when the material has a
     // viscosity or a damping ratio: decided per material, without reading tri_eta
@@ -197,7 +206,8 @@ ElementSchedule build_element_schedule(const Model& m) {
                         [&](int32_t mt) { return mt == m.tri_material[body.tri_begin]; })) {
             if (open_small && chunks.back()[1] == body.tri_begin &&
                 chunks.back()[1] - chunks.back()[0] + n <= kChunkTris &&
-                m.tri_material[chunks.back()[0]] == m.tri_material[body.tri_begin]) {
+                m.tri_material[chunks.back()[0]] == m.tri_material[body.tri_begin] &&
+                m.bodies[chunk_body.back()].element == body.element) {
                 chunks.back()[1] = body.tri_end;
             } else {
                 chunks.push_back({body.tri_begin, body.tri_end});

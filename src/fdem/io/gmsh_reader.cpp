@@ -31,6 +31,8 @@ namespace {
 // Gmsh element types fdem understands (Gmsh reference manual, "MSH file format").
 constexpr int kLine2 = 1;
 constexpr int kTriangle3 = 2;
+constexpr int kLine3 = 8;      // second order: end nodes 0, 1, then the mid node 2
+constexpr int kTriangle6 = 9;  // second order: corners 0, 1, 2, then mid-edge 3 (0-1), 4, 5
 constexpr int kPoint1 = 15;
 
 std::mutex& gmsh_mutex() {
@@ -210,6 +212,9 @@ void extract(MeshData& mesh) {
     std::map<std::array<int32_t, 3>, int32_t> seen_tri;
     std::map<std::array<int32_t, 2>, int32_t> seen_line;
     std::map<int32_t, int32_t> seen_point;
+    std::vector<std::array<int32_t, 3>> tri_mid;  // -1 for 3-node triangles
+    std::vector<int32_t> line_mid;
+    std::vector<int> tri_type, line_type;  // Gmsh type of each kept element, for the order check
     auto sorted3 = [](std::array<int32_t, 3> a) {
         std::sort(a.begin(), a.end());
         return a;
@@ -236,26 +241,36 @@ void extract(MeshData& mesh) {
             if (et.empty()) {
                 continue;
             }
-            if (type == kTriangle3) {
+            if (type == kTriangle3 || type == kTriangle6) {
+                // corners first (dedup key), then the mid-edge nodes of a 6-node triangle
+                const std::size_t nn = type == kTriangle6 ? 6 : 3;
                 for (std::size_t e = 0; e < et.size(); ++e) {
-                    const std::array<int32_t, 3> t = {to_id(en[3 * e], et[e]),
-                                                      to_id(en[3 * e + 1], et[e]),
-                                                      to_id(en[3 * e + 2], et[e])};
+                    const std::size_t o = nn * e;
+                    const std::array<int32_t, 3> t = {to_id(en[o], et[e]), to_id(en[o + 1], et[e]),
+                                                      to_id(en[o + 2], et[e])};
                     const auto [it, added] =
                         seen_tri.emplace(sorted3(t), static_cast<int32_t>(mesh.tris.size()));
                     if (added) {
                         mesh.tris.push_back(t);
+                        tri_mid.push_back(nn == 6 ? std::array<int32_t, 3>{to_id(en[o + 3], et[e]),
+                                                                           to_id(en[o + 4], et[e]),
+                                                                           to_id(en[o + 5], et[e])}
+                                                  : std::array<int32_t, 3>{-1, -1, -1});
+                        tri_type.push_back(type);
                     }
                     mine.push_back(it->second);
                 }
-            } else if (type == kLine2) {
+            } else if (type == kLine2 || type == kLine3) {
+                const std::size_t nn = type == kLine3 ? 3 : 2;
                 for (std::size_t e = 0; e < et.size(); ++e) {
-                    const std::array<int32_t, 2> l = {to_id(en[2 * e], et[e]),
-                                                      to_id(en[2 * e + 1], et[e])};
+                    const std::size_t o = nn * e;
+                    const std::array<int32_t, 2> l = {to_id(en[o], et[e]), to_id(en[o + 1], et[e])};
                     const auto [it, added] =
                         seen_line.emplace(sorted2(l), static_cast<int32_t>(mesh.lines.size()));
                     if (added) {
                         mesh.lines.push_back(l);
+                        line_mid.push_back(nn == 3 ? to_id(en[o + 2], et[e]) : -1);
+                        line_type.push_back(type);
                     }
                     mine.push_back(it->second);
                 }
@@ -272,7 +287,8 @@ void extract(MeshData& mesh) {
             } else {
                 // never ignore an element silently: it would be a hole in a body
                 const std::string name = element_name(type);
-                std::string hint = "use first-order triangles (gmsh -order 1";
+                std::string hint =
+                    "use first- or second-order triangles (3-node or 6-node; gmsh -order 1 or 2";
                 if (name.find("Quadrilateral") != std::string::npos) {
                     hint += "; for .geo files remove Recombine";
                 }
@@ -282,6 +298,37 @@ void extract(MeshData& mesh) {
                                             "is not supported; {}",
                                             path, et[0], type, name, hint));
             }
+        }
+    }
+    // one order for the whole mesh: a body cannot mix 3-node and 6-node triangles (a 3-node
+    // neighbour would leave the mid-edge node of a shared edge hanging)
+    const bool second = !tri_type.empty() && tri_type[0] == kTriangle6;
+    const int want_tri = second ? kTriangle6 : kTriangle3;
+    const int want_line = second ? kLine3 : kLine2;
+    for (std::size_t t = 0; t < tri_type.size(); ++t) {
+        if (tri_type[t] != want_tri) {
+            fail_at_section(path, "$Elements",
+                            fmt::format("mesh file '{}' mixes 3-node and 6-node triangles (type 2 "
+                                        "and 9); a mesh must be entirely first or second order "
+                                        "(gmsh -order 1 or -order 2)",
+                                        path));
+        }
+    }
+    for (std::size_t l = 0; l < line_type.size(); ++l) {
+        if (!tri_type.empty() && line_type[l] != want_line) {
+            fail_at_section(path, "$Elements",
+                            fmt::format("mesh file '{}' has {} triangles but {} lines (type {}); "
+                                        "lines must have the order of the triangles (gmsh "
+                                        "-order {})",
+                                        path, second ? "6-node" : "3-node",
+                                        line_type[l] == kLine3 ? "3-node" : "2-node", line_type[l],
+                                        second ? 2 : 1));
+        }
+    }
+    if (second) {
+        mesh.tri_mid = std::move(tri_mid);
+        if (!mesh.lines.empty()) {
+            mesh.line_mid = std::move(line_mid);
         }
     }
     mesh.tri_tag.assign(mesh.tris.size(), 0);
@@ -339,7 +386,7 @@ void extract(MeshData& mesh) {
 
 }  // namespace
 
-MeshData read_mesh(const std::string& path, Real mesh_size) {
+MeshData read_mesh(const std::string& path, Real mesh_size, int order) {
     MeshData mesh;
     mesh.file = path;
 
@@ -389,6 +436,9 @@ MeshData read_mesh(const std::string& path, Real mesh_size) {
                 gmsh::option::setNumber("Mesh.MeshSizeMax", mesh_size);
             }
             gmsh::model::mesh::generate(2);
+            if (order == 2) {
+                gmsh::model::mesh::setOrder(2);  // 6-node triangles for composite elements
+            }
             if (std::string err = GmshSession::first_error(); !err.empty()) {
                 fail_from_gmsh(path, err);
             }

@@ -1,6 +1,9 @@
 // Structured rectangle mesh for tests, benchmarks and examples (no Gmsh needed).
+#include <algorithm>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "fdem/mesh.hpp"
 
@@ -79,6 +82,32 @@ MeshData make_rectangle_mesh(Real x0, Real y0, Real w, Real h, int nx, int ny, b
         mesh.groups.push_back(std::move(s));
     }
     mesh.groups.push_back(std::move(domain));
+    return mesh;
+}
+
+// Mid-edge nodes are appended after the corner nodes, one per edge, in order of first use by
+// the triangles (then the boundary lines reuse them): edge (p, q) is keyed by (min, max).
+MeshData make_rectangle_mesh_order2(Real x0, Real y0, Real w, Real h, int nx, int ny,
+                                    bool alternate) {
+    MeshData mesh = make_rectangle_mesh(x0, y0, w, h, nx, ny, alternate);
+    std::map<std::pair<int32_t, int32_t>, int32_t> mid;
+    auto mid_node = [&](int32_t p, int32_t q) {
+        const auto key = std::minmax(p, q);
+        const auto [it, added] = mid.emplace(key, static_cast<int32_t>(mesh.nodes.size()));
+        if (added) {
+            mesh.nodes.push_back(0.5 * (mesh.nodes[p] + mesh.nodes[q]));
+        }
+        return it->second;
+    };
+    mesh.tri_mid.reserve(mesh.tris.size());
+    for (const auto& t : mesh.tris) {
+        mesh.tri_mid.push_back({mid_node(t[0], t[1]), mid_node(t[1], t[2]), mid_node(t[2], t[0])});
+    }
+    mesh.line_mid.reserve(mesh.lines.size());
+    for (const auto& l : mesh.lines) {
+        mesh.line_mid.push_back(mid_node(l[0], l[1]));
+    }
+    mesh.file = "rectangle (order 2)";
     return mesh;
 }
 

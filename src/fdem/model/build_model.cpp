@@ -52,8 +52,44 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
                                const BodyOptions& opt) {
     const int32_t n_mesh_nodes = static_cast<int32_t>(mesh.nodes.size());
     std::vector<NodeId> map(static_cast<size_t>(n_mesh_nodes), kNone);
+    const bool second = mesh.second_order();
+    const ElementKind kind =
+        opt.element.value_or(second ? ElementKind::Composite6 : ElementKind::Cst);
+    if (kind == ElementKind::Composite6 && !second) {
+        throw InputError({mesh.file, 0, 0}, "element",
+                         fmt::format("body \"{}\": the composite element needs a mesh of 6-node "
+                                     "triangles (Gmsh type 9), but mesh '{}' has 3-node "
+                                     "triangles; mesh it at order 2 (gmsh -order 2) or use "
+                                     "element = \"cst\"",
+                                     opt.name, mesh.file));
+    }
 
-    // reject degenerate triangles before anything else (tolerance relative to edge length^2)
+    // Element t of the mesh as the triangles of the model, counter-clockwise: itself for a
+    // 3-node triangle; for a 6-node triangle its four sub-triangles in the order of the Body
+    // contract (model.hpp), with the paper's perimeter numbering n1..n6 (spec §3.3)
+    auto sub_triangles = [&](int32_t t, std::array<std::array<int32_t, 3>, 4>& out) -> int {
+        std::array<int32_t, 3> c = mesh.tris[static_cast<size_t>(t)];
+        if (!second) {
+            if (signed_area(mesh.nodes[c[0]], mesh.nodes[c[1]], mesh.nodes[c[2]]) < 0) {
+                std::swap(c[1], c[2]);
+            }
+            out[0] = c;
+            return 1;
+        }
+        std::array<int32_t, 3> mid = mesh.tri_mid[static_cast<size_t>(t)];  // on c0c1, c1c2, c2c0
+        if (signed_area(mesh.nodes[c[0]], mesh.nodes[c[1]], mesh.nodes[c[2]]) < 0) {
+            // corners (c0, c2, c1): edges c0c2, c2c1, c1c0 carry mid[2], mid[1], mid[0]
+            std::swap(c[1], c[2]);
+            std::swap(mid[0], mid[2]);
+        }
+        const int32_t n1 = c[0], n2 = mid[0], n3 = c[1], n4 = mid[1], n5 = c[2], n6 = mid[2];
+        out = {{{n1, n2, n6}, {n2, n3, n4}, {n6, n4, n5}, {n2, n4, n6}}};
+        return 4;
+    };
+
+    // reject degenerate triangles before anything else (tolerance relative to edge length^2);
+    // for a 6-node triangle each sub-triangle must be counter-clockwise too, else a mid-edge
+    // node sits on the wrong side of the chord between its neighbours (a badly curved edge)
     for (int32_t t : tri_ids) {
         const auto& n = mesh.tris[static_cast<size_t>(t)];
         const Vec2 a = mesh.nodes[n[0]], b = mesh.nodes[n[1]], c = mesh.nodes[n[2]];
@@ -67,6 +103,26 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
                     "m^2); remove it or fix the mesh (e.g. remesh with gmsh)",
                     t + 1, n[0] + 1, n[1] + 1, n[2] + 1, opt.name, area));
         }
+        if (second) {
+            std::array<std::array<int32_t, 3>, 4> sub{};
+            sub_triangles(t, sub);
+            for (int k = 0; k < 4; ++k) {
+                const auto& q = sub[static_cast<size_t>(k)];
+                const Vec2 p0 = mesh.nodes[q[0]], p1 = mesh.nodes[q[1]], p2 = mesh.nodes[q[2]];
+                const Real sa = signed_area(p0, p1, p2);
+                const Real sl2 = std::max({norm2(p1 - p0), norm2(p2 - p1), norm2(p0 - p2)});
+                if (!(sa > 1e-12 * sl2)) {
+                    throw InputError(
+                        {mesh.file, 0, 0}, fmt::format("triangle {}", t + 1),
+                        fmt::format("6-node triangle {} (corner nodes {}, {}, {}) of body \"{}\" "
+                                    "has a degenerate or inverted sub-triangle {} (nodes {}, {}, "
+                                    "{}, area {:.3g} m^2): a mid-edge node is far from its "
+                                    "edge; straighten the edges or refine the mesh",
+                                    t + 1, n[0] + 1, n[1] + 1, n[2] + 1, opt.name, k + 1, q[0] + 1,
+                                    q[1] + 1, q[2] + 1, sa));
+                }
+            }
+        }
     }
 
     // connected components: triangles sharing a node belong to the same body
@@ -75,6 +131,10 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
         const auto& n = mesh.tris[static_cast<size_t>(t)];
         sets.unite(n[0], n[1]);
         sets.unite(n[0], n[2]);
+        if (second) {
+            for (const int32_t q : mesh.tri_mid[static_cast<size_t>(t)])
+                sets.unite(n[0], q);
+        }
     }
     // group triangles by component root, components ordered by their first triangle (file order)
     std::vector<int32_t> sorted = tri_ids;
@@ -101,28 +161,29 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
         body.group = group;
         body.material = opt.material;
         body.fixed = opt.fixed;
+        body.element = kind;
         body.node_begin = m.num_nodes();
         body.tri_begin = m.num_tris();
         const BodyId bid = m.num_bodies();
         for (int32_t t : tris) {
-            auto n = mesh.tris[static_cast<size_t>(t)];
-            std::array<NodeId, 3> ids{};
-            for (int k = 0; k < 3; ++k) {
-                if (map[n[k]] == kNone) {
-                    map[n[k]] = m.num_nodes();
-                    m.node_x0.push_back(mesh.nodes[n[k]]);
-                    m.node_v0.push_back(opt.velocity);
-                    m.node_body.push_back(bid);
+            std::array<std::array<int32_t, 3>, 4> sub{};
+            const int ns = sub_triangles(t, sub);
+            for (int s = 0; s < ns; ++s) {
+                std::array<NodeId, 3> ids{};
+                for (int k = 0; k < 3; ++k) {
+                    const int32_t q = sub[static_cast<size_t>(s)][static_cast<size_t>(k)];
+                    if (map[q] == kNone) {
+                        map[q] = m.num_nodes();
+                        m.node_x0.push_back(mesh.nodes[q]);
+                        m.node_v0.push_back(opt.velocity);
+                        m.node_body.push_back(bid);
+                    }
+                    ids[static_cast<size_t>(k)] = map[q];
                 }
-                ids[k] = map[n[k]];
+                m.tri_nodes.push_back(ids);
+                m.tri_body.push_back(bid);
+                m.tri_material.push_back(opt.material);
             }
-            // re-orient counter-clockwise
-            if (signed_area(m.node_x0[ids[0]], m.node_x0[ids[1]], m.node_x0[ids[2]]) < 0) {
-                std::swap(ids[1], ids[2]);
-            }
-            m.tri_nodes.push_back(ids);
-            m.tri_body.push_back(bid);
-            m.tri_material.push_back(opt.material);
         }
         body.node_end = m.num_nodes();
         body.tri_end = m.num_tris();

@@ -52,14 +52,23 @@ bool renumber_spatially(Model& m) {
         const Real cells = static_cast<Real>((1 << 21) - 1);
         const Real sx = hi.x > lo.x ? cells / (hi.x - lo.x) : 0;
         const Real sy = hi.y > lo.y ? cells / (hi.y - lo.y) : 0;
-        std::vector<std::pair<uint64_t, TriId>> order(static_cast<size_t>(nt));
-        for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
-            const auto& n = m.tri_nodes[t];
-            const Vec2 c = (m.node_x0[n[0]] + m.node_x0[n[1]] + m.node_x0[n[2]]) / 3.0;
+
+        // units that move together: a triangle, or the four sub-triangles of a composite
+        // element (model.hpp: they must stay consecutive and in their order)
+        const TriId unit = body.element == ElementKind::Composite6 ? 4 : 1;
+        const TriId nu = nt / unit;
+        std::vector<std::pair<uint64_t, TriId>> order(static_cast<size_t>(nu));
+        for (TriId u = 0; u < nu; ++u) {
+            Vec2 c{0, 0};
+            for (TriId t = body.tri_begin + u * unit; t < body.tri_begin + (u + 1) * unit; ++t) {
+                const auto& n = m.tri_nodes[t];
+                c += m.node_x0[n[0]] + m.node_x0[n[1]] + m.node_x0[n[2]];
+            }
+            c = c / static_cast<Real>(3 * unit);
             const auto qx = static_cast<uint64_t>((c.x - lo.x) * sx);
             const auto qy = static_cast<uint64_t>((c.y - lo.y) * sy);
-            order[static_cast<size_t>(t - body.tri_begin)] = {
-                spread_bits(qx) | (spread_bits(qy) << 1), t};
+            order[static_cast<size_t>(u)] = {spread_bits(qx) | (spread_bits(qy) << 1),
+                                             body.tri_begin + u * unit};
         }
         std::sort(order.begin(), order.end());  // ties broken by the old id: deterministic
 
@@ -68,9 +77,11 @@ bool renumber_spatially(Model& m) {
         std::vector<bool> seen(static_cast<size_t>(body.node_end - body.node_begin), false);
         std::vector<std::array<NodeId, 3>> tris(static_cast<size_t>(nt));
         std::vector<int32_t> mats(static_cast<size_t>(nt));
-        for (size_t k = 0; k < order.size(); ++k) {
-            tris[k] = m.tri_nodes[order[k].second];
-            mats[k] = m.tri_material[order[k].second];
+        for (size_t k = 0; k < static_cast<size_t>(nt); ++k) {
+            const TriId old = order[k / static_cast<size_t>(unit)].second +
+                              static_cast<TriId>(k % static_cast<size_t>(unit));
+            tris[k] = m.tri_nodes[old];
+            mats[k] = m.tri_material[old];
             for (NodeId n : tris[k]) {
                 const size_t local = static_cast<size_t>(n - body.node_begin);
                 if (!seen[local]) {

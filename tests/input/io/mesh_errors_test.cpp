@@ -148,12 +148,13 @@ Line(1) = {1, 2};
                            "2-D surface (define a Plane Surface in the .geo file)"));
 }
 
-TEST(MeshErrors, SecondOrderTrianglesAreRejected) {
+TEST(MeshErrors, ThirdOrderTrianglesAreRejected) {
+    // 6-node triangles are read (composite element, issue #7); higher orders are not
     const std::string path =
-        write_temp("order2.geo", std::string(kSquareGeo) + "Mesh.ElementOrder = 2;\n");
+        write_temp("order3.geo", std::string(kSquareGeo) + "Mesh.ElementOrder = 3;\n");
     const std::string w = mesh_error(path);
-    EXPECT_THAT(w, HasSubstr("has type 9 (Triangle 6), which is not supported; use first-order "
-                             "triangles (gmsh -order 1)"));
+    EXPECT_THAT(w, HasSubstr("(Triangle 10), which is not supported; use first- or second-order "
+                             "triangles (3-node or 6-node; gmsh -order 1 or 2)"));
     EXPECT_THAT(w, HasSubstr(path));
 }
 
@@ -161,8 +162,9 @@ TEST(MeshErrors, QuadrilateralsAreRejected) {
     const std::string path =
         write_temp("quads.geo", std::string(kSquareGeo) + "Recombine Surface{1};\n");
     EXPECT_THAT(mesh_error(path), HasSubstr("has type 3 (Quadrilateral 4), which is not "
-                                            "supported; use first-order triangles (gmsh -order "
-                                            "1; for .geo files remove Recombine)"));
+                                            "supported; use first- or second-order triangles "
+                                            "(3-node or 6-node; gmsh -order 1 or 2; for .geo "
+                                            "files remove Recombine)"));
 }
 
 TEST(MeshErrors, NodeOutOfPlane) {
