@@ -32,6 +32,18 @@ enum class ContactScaling {
              ///< lbar = smallest boundary edge; a uniform pressure gives a uniform depth
 };
 
+/// Contact sub-triangulation of a 6-node composite element (ElementKind::Composite6) that has two
+/// (paper case 1, Figs. 7-8) or three (case 2, a body of one composite, Figs. 9-10) of its edges on
+/// the body boundary, where some mesh sub-triangles have no inner node (paper §2.4,
+/// docs/theory.md §6.1.1). Composites with at most one boundary edge are not affected.
+enum class CompositeSpecialCase {
+    Fan,    ///< paper option (b) (default): case 1 = fan of four triangles around the mid-node of
+            ///< the inner edge; case 2 = fan of six triangles around a virtual node at the
+            ///< incenter of the corner triangle. Exact distance for straight-sided elements.
+    Split,  ///< paper option (a): ten sub-triangles, virtual nodes n7, n8, n9 at the midpoints of
+            ///< the edges of the central sub-triangle (n2, n4, n6)
+};
+
 /// Contact law parameters (paper eqs. 5-20). SI units; defaults follow spec §4.5.
 /// The force function is g(d) = 2 l (d/l)^alpha while loading (docs/theory.md eq. 6.6), so that
 /// alpha = 1 gives the paper's default potential phi = d^2 and a force 2 k_n d.
@@ -65,8 +77,9 @@ struct LegacyBoundaryTri {
 ///
 /// Node ids used by the contact code: [0, num_real_nodes) are the model's nodes; ids
 /// num_real_nodes + v are virtual node v (chord midpoints and single-triangle incenters, spec
-/// §4.4). A virtual node has no mass and no DOF: its position/velocity is sum_k w_k x_{parent_k}
-/// and a force on it goes to the parents with the same weights.
+/// §4.4; composite special cases, docs/theory.md §6.1.1). A virtual node has no mass and no
+/// DOF: its position/velocity is sum_k w_k x_{parent_k} and a force on it goes to the parents
+/// with the same weights.
 struct ContactModel {
     ContactAlgorithm algorithm = ContactAlgorithm::None;
     ContactParams params;                    ///< default for every material pair
@@ -81,6 +94,9 @@ struct ContactModel {
     Real m_bar = 0;  ///< smallest element mass [kg/m] over all bodies incl. fixed ones (eq. 19)
     Real deep_ratio_limit = 0.5;  ///< d / (largest nodal distance of the triangle) counted as deep
     ContactScaling scaling = ContactScaling::Mass;  ///< target force scale (eq. 19 or length)
+    /// sub-triangulation of composite elements in the paper's special cases (smooth contact only;
+    /// baseline B always uses the Split layout, see docs/theory.md §6.1.1)
+    CompositeSpecialCase composite_special_case = CompositeSpecialCase::Fan;
 
     // ---- derived (build_contact_topology) -------------------------------------------------
     /// pair_params resolved: num_materials^2 entries, every default filled in. Indexed by
@@ -117,14 +133,18 @@ struct ContactModel {
     /// Boundary edges, oriented as in their (counter-clockwise) triangle: material on the left.
     std::vector<std::array<NodeId, 2>> boundary_edges;
     std::vector<int32_t> body_bedge_begin;
-    std::vector<std::array<NodeId, 2>> chords;  ///< interior edges joining two boundary nodes
-    std::vector<TriId> boundary_tris;           ///< elements with >= 1 boundary node
+    /// interior edges joining two boundary nodes (in a composite body: the central sub-triangle's
+    /// edges of composites in the special cases; they get a virtual node only with Split)
+    std::vector<std::array<NodeId, 2>> chords;
+    std::vector<TriId> boundary_tris;  ///< elements with >= 1 boundary node
 
     /// Contactor sub-triangles (counter-clockwise, contact node ids); those of body b are
     /// [body_sub_begin[b], body_sub_begin[b+1]).
     std::vector<std::array<NodeId, 3>> sub_tri;
     std::vector<BodyId> sub_body;
-    std::vector<TriId> sub_parent;  ///< mesh triangle the sub-triangle was cut from
+    /// mesh triangle the sub-triangle was cut from; for a composite fan triangle (which may
+    /// cross mesh sub-triangles) the mesh sub-triangle holding its boundary half-edge
+    std::vector<TriId> sub_parent;
     std::vector<int32_t> body_sub_begin;
 
     /// Baseline B only (ContactAlgorithm::LegacyBoundary): phi_B per contactor sub-triangle,

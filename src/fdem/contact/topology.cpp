@@ -1,6 +1,7 @@
 // Contact topology of the smooth contact (paper §2, spec §4.1-4.4, docs/theory.md §6.1-6.2):
 // boundary edges/nodes/elements per body, chord splitting with virtual mid-nodes, incenter fan
-// of single-triangle bodies, contactor sub-triangles and frozen nodal contact distances.
+// of single-triangle bodies, the special cases of the 6-node composite element (paper §2.4,
+// docs/theory.md §6.1.1), contactor sub-triangles and frozen nodal contact distances.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -120,6 +121,17 @@ private:
         cm_.sub_body.push_back(b);
         cm_.sub_parent.push_back(t);
     }
+    bool is_boundary_node(NodeId i) const { return cm_.node_on_boundary[i] != 0; }
+    // virtual mid-node of chord p-q, created on first use (composite bodies) or up front (CST)
+    NodeId chord_mid(NodeId p, NodeId q) {
+        const auto it = std::lower_bound(ckeys_.begin(), ckeys_.end(), key(p, q));
+        NodeId& v = cvirt_[static_cast<size_t>(it - ckeys_.begin())];
+        if (v == kNone) v = add_virtual({p, q, p}, {0.5, 0.5, 0.0});
+        return v;
+    }
+    void split_mesh_triangle(BodyId b, TriId t);
+    void composite(BodyId b, TriId t0);
+    void nodal_distances(BodyId b, size_t sub_begin);
 
     Model& m_;
     ContactModel& cm_;
@@ -169,82 +181,199 @@ void TopologyBuilder::body(BodyId b) {
     }
     cm_.body_bnode_begin.push_back(static_cast<int32_t>(cm_.boundary_nodes.size()));
 
-    // 2. chords: interior edges joining two boundary nodes get a virtual mid-node (spec §4.4)
+    // 2. chords: interior edges joining two boundary nodes get a virtual mid-node (spec §4.4).
+    //    CST bodies create them all here; in composite bodies the chords are the central
+    //    sub-triangle edges of the special cases, whose mid-nodes composite() creates if its
+    //    layout uses them (theory §6.1.1)
+    const bool composite_body = body.element == ElementKind::Composite6;
     ckeys_.clear();
     cvirt_.clear();
     for (const Key& e : interior) {
         if (cm_.node_on_boundary[e[0]] && cm_.node_on_boundary[e[1]]) {
             cm_.chords.push_back(e);
             ckeys_.push_back(e);
-            cvirt_.push_back(add_virtual({e[0], e[1], e[0]}, {0.5, 0.5, 0.0}));
+            cvirt_.push_back(composite_body ? kNone
+                                            : add_virtual({e[0], e[1], e[0]}, {0.5, 0.5, 0.0}));
         }
     }
-    auto chord_mid = [&](NodeId p, NodeId q) {
-        const auto it = std::lower_bound(ckeys_.begin(), ckeys_.end(), key(p, q));
-        return cvirt_[static_cast<size_t>(it - ckeys_.begin())];
-    };
 
     // 3. boundary elements -> contactor sub-triangles (all counter-clockwise)
-    for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
-        const auto& n = m_.tri_nodes[t];
-        if (!cm_.node_on_boundary[n[0]] && !cm_.node_on_boundary[n[1]] &&
-            !cm_.node_on_boundary[n[2]]) {
-            continue;
+    if (composite_body) {
+        if ((body.tri_end - body.tri_begin) % 4 != 0) {
+            throw InputError(SourceLocation{}, "mesh",
+                             fmt::format("body {} (\"{}\"): a composite body needs 4 sub-triangles "
+                                         "per element, got {} triangles",
+                                         b, body.name, body.tri_end - body.tri_begin));
         }
-        cm_.boundary_tris.push_back(t);
-        int nb = 0, nc = 0;
-        bool is_chord[3];
-        for (int k = 0; k < 3; ++k) {
-            const NodeId p = n[k], q = n[(k + 1) % 3];
-            nb += has_key(bkeys_, p, q) ? 1 : 0;
-            is_chord[k] = has_key(ckeys_, p, q);
-            nc += is_chord[k] ? 1 : 0;
-        }
-        if (nb == 3) {
-            // single-triangle body (paper case 2): fan from the incenter, weights = opposite
-            // edge lengths (spec §4.4-4), which makes the field exact (spec §6.5)
-            const Real la = norm(m_.node_x0[n[1]] - m_.node_x0[n[2]]);
-            const Real lb = norm(m_.node_x0[n[2]] - m_.node_x0[n[0]]);
-            const Real lc = norm(m_.node_x0[n[0]] - m_.node_x0[n[1]]);
-            const Real per = la + lb + lc;
-            const NodeId c = add_virtual(n, {la / per, lb / per, lc / per});
-            add_sub(b, t, n[0], n[1], c);
-            add_sub(b, t, n[1], n[2], c);
-            add_sub(b, t, n[2], n[0], c);
-        } else if (nc == 0) {
-            add_sub(b, t, n[0], n[1], n[2]);
-        } else if (nc == 1) {
-            // chord B-C opposite A: (A, B, M), (A, M, C)
-            int k = 0;
-            while (!is_chord[k])
-                ++k;
-            const NodeId B = n[k], C = n[(k + 1) % 3], A = n[(k + 2) % 3];
-            const NodeId M = chord_mid(B, C);
-            add_sub(b, t, A, B, M);
-            add_sub(b, t, A, M, C);
-        } else if (nc == 2) {
-            // chords P0-P1 and P0-P2: (P0, M1, M2), (M1, P1, P2), (M1, P2, M2)
-            int k = 0;
-            while (is_chord[k])
-                ++k;
-            const NodeId P1 = n[k], P2 = n[(k + 1) % 3], P0 = n[(k + 2) % 3];
-            const NodeId M1 = chord_mid(P0, P1), M2 = chord_mid(P0, P2);
-            add_sub(b, t, P0, M1, M2);
-            add_sub(b, t, M1, P1, P2);
-            add_sub(b, t, M1, P2, M2);
-        } else {
-            // 1 -> 4 midpoint subdivision
-            const NodeId mab = chord_mid(n[0], n[1]), mbc = chord_mid(n[1], n[2]),
-                         mca = chord_mid(n[2], n[0]);
-            add_sub(b, t, n[0], mab, mca);
-            add_sub(b, t, mab, n[1], mbc);
-            add_sub(b, t, mca, mbc, n[2]);
-            add_sub(b, t, mab, mbc, mca);
-        }
+        for (TriId t = body.tri_begin; t < body.tri_end; t += 4)
+            composite(b, t);
+    } else {
+        for (TriId t = body.tri_begin; t < body.tri_end; ++t)
+            split_mesh_triangle(b, t);
     }
     const size_t sub_begin = static_cast<size_t>(cm_.body_sub_begin.back());
     cm_.body_sub_begin.push_back(static_cast<int32_t>(cm_.sub_tri.size()));
+    nodal_distances(b, sub_begin);
+}
 
+// Contactor sub-triangles of mesh triangle t if it is a boundary element (theory eqs. 6.1-6.2).
+void TopologyBuilder::split_mesh_triangle(BodyId b, TriId t) {
+    const auto& n = m_.tri_nodes[t];
+    if (!cm_.node_on_boundary[n[0]] && !cm_.node_on_boundary[n[1]] && !cm_.node_on_boundary[n[2]]) {
+        return;
+    }
+    cm_.boundary_tris.push_back(t);
+    int nb = 0, nc = 0;
+    bool is_chord[3];
+    for (int k = 0; k < 3; ++k) {
+        const NodeId p = n[k], q = n[(k + 1) % 3];
+        nb += has_key(bkeys_, p, q) ? 1 : 0;
+        is_chord[k] = has_key(ckeys_, p, q);
+        nc += is_chord[k] ? 1 : 0;
+    }
+    if (nb == 3) {
+        // single-triangle body (paper case 2): fan from the incenter, weights = opposite
+        // edge lengths (spec §4.4-4), which makes the field exact (spec §6.5)
+        const Real la = norm(m_.node_x0[n[1]] - m_.node_x0[n[2]]);
+        const Real lb = norm(m_.node_x0[n[2]] - m_.node_x0[n[0]]);
+        const Real lc = norm(m_.node_x0[n[0]] - m_.node_x0[n[1]]);
+        const Real per = la + lb + lc;
+        const NodeId c = add_virtual(n, {la / per, lb / per, lc / per});
+        add_sub(b, t, n[0], n[1], c);
+        add_sub(b, t, n[1], n[2], c);
+        add_sub(b, t, n[2], n[0], c);
+    } else if (nc == 0) {
+        add_sub(b, t, n[0], n[1], n[2]);
+    } else if (nc == 1) {
+        // chord B-C opposite A: (A, B, M), (A, M, C)
+        int k = 0;
+        while (!is_chord[k])
+            ++k;
+        const NodeId B = n[k], C = n[(k + 1) % 3], A = n[(k + 2) % 3];
+        const NodeId M = chord_mid(B, C);
+        add_sub(b, t, A, B, M);
+        add_sub(b, t, A, M, C);
+    } else if (nc == 2) {
+        // chords P0-P1 and P0-P2: (P0, M1, M2), (M1, P1, P2), (M1, P2, M2)
+        int k = 0;
+        while (is_chord[k])
+            ++k;
+        const NodeId P1 = n[k], P2 = n[(k + 1) % 3], P0 = n[(k + 2) % 3];
+        const NodeId M1 = chord_mid(P0, P1), M2 = chord_mid(P0, P2);
+        add_sub(b, t, P0, M1, M2);
+        add_sub(b, t, M1, P1, P2);
+        add_sub(b, t, M1, P2, M2);
+    } else {
+        // 1 -> 4 midpoint subdivision
+        const NodeId mab = chord_mid(n[0], n[1]), mbc = chord_mid(n[1], n[2]),
+                     mca = chord_mid(n[2], n[0]);
+        add_sub(b, t, n[0], mab, mca);
+        add_sub(b, t, mab, n[1], mbc);
+        add_sub(b, t, mca, mbc, n[2]);
+        add_sub(b, t, mab, mbc, mca);
+    }
+}
+
+// Contact sub-triangles of the composite element whose four mesh sub-triangles start at t0
+// (layout of model.hpp Body; paper §2.4, docs/theory.md §6.1.1). Perimeter numbering of the
+// paper: P = n1..n6, corners n1, n3, n5; macro edge k = P[2k] - P[2k+1] - P[2k+2].
+void TopologyBuilder::composite(BodyId b, TriId t0) {
+    const auto& s0 = m_.tri_nodes[t0];
+    const auto& s1 = m_.tri_nodes[t0 + 1];
+    const auto& s2 = m_.tri_nodes[t0 + 2];
+    const auto& s3 = m_.tri_nodes[t0 + 3];
+    const NodeId P[6] = {s0[0], s0[1], s1[1], s1[2], s2[2], s0[2]};
+    if (s1[0] != P[1] || s2[0] != P[5] || s2[1] != P[3] ||
+        !(s3 == std::array<NodeId, 3>{P[1], P[3], P[5]})) {
+        const Body& body = m_.bodies[b];
+        throw InputError(SourceLocation{}, "mesh",
+                         fmt::format("body {} (\"{}\"): composite element {} does not follow the "
+                                     "sub-triangle layout (n1,n2,n6), (n2,n3,n4), (n6,n4,n5), "
+                                     "(n2,n4,n6) (include/fdem/model.hpp)",
+                                     b, body.name, (t0 - body.tri_begin) / 4));
+    }
+    int n_bedges = 0, inner = -1;
+    for (int k = 0; k < 3; ++k) {
+        const bool on = has_key(bkeys_, P[2 * k], P[2 * k + 1]) &&
+                        has_key(bkeys_, P[2 * k + 1], P[(2 * k + 2) % 6]);
+        n_bedges += on ? 1 : 0;
+        if (!on) inner = k;
+    }
+    if (n_bedges < 2) {
+        // no sub-triangle without an inner node: the sub-triangles as they are (no chords)
+        for (TriId t = t0; t < t0 + 4; ++t)
+            split_mesh_triangle(b, t);
+        return;
+    }
+    for (TriId t = t0; t < t0 + 4; ++t)
+        cm_.boundary_tris.push_back(t);
+
+    // baseline B evaluates phi_B of the mesh sub-triangle holding each contact sub-triangle
+    // (legacy_boundary.cpp), so it needs the nested option (a) layout
+    const CompositeSpecialCase mode = cm_.algorithm == ContactAlgorithm::LegacyBoundary
+                                          ? CompositeSpecialCase::Split
+                                          : cm_.composite_special_case;
+    if (mode == CompositeSpecialCase::Split) {
+        // option (a), Figs. 8a/10a: n7, n8, n9 at the midpoints of the central sub-triangle's
+        // edges; each corner sub-triangle is halved, the central one cut 1 -> 4 (10 in all)
+        auto mid = [&](NodeId p, NodeId q) {
+            return is_boundary_node(p) && is_boundary_node(q)
+                       ? chord_mid(p, q)
+                       : add_virtual({p, q, p}, {0.5, 0.5, 0.0});
+        };
+        const NodeId m24 = mid(P[1], P[3]), m46 = mid(P[3], P[5]), m62 = mid(P[5], P[1]);
+        add_sub(b, t0, P[0], P[1], m62);  // (n1, n2, n6) halved at n7 = mid(n2, n6)
+        add_sub(b, t0, P[0], m62, P[5]);
+        add_sub(b, t0 + 1, P[2], P[3], m24);  // (n2, n3, n4) halved at n8 = mid(n2, n4)
+        add_sub(b, t0 + 1, P[2], m24, P[1]);
+        add_sub(b, t0 + 2, P[4], P[5], m46);  // (n6, n4, n5) halved at n9 = mid(n4, n6)
+        add_sub(b, t0 + 2, P[4], m46, P[3]);
+        add_sub(b, t0 + 3, P[1], m24, m62);  // (n2, n4, n6): 1 -> 4
+        add_sub(b, t0 + 3, m24, P[3], m46);
+        add_sub(b, t0 + 3, m62, m46, P[5]);
+        add_sub(b, t0 + 3, m24, m46, m62);
+        return;
+    }
+
+    // option (b): a fan, one triangle per boundary half-edge h = P[h] - P[h+1]; its mesh parent
+    // is the corner sub-triangle holding that half-edge
+    constexpr int kHalfEdgeTri[6] = {0, 1, 1, 2, 2, 0};
+    NodeId apex;
+    int h0, nh;
+    if (n_bedges == 2) {
+        // case 1, Fig. 8b: fan of four around the mid-node of the inner edge (an inner node)
+        apex = P[2 * inner + 1];
+        h0 = 2 * inner + 2;
+        nh = 4;
+    } else {
+        // case 2, Fig. 10b: fan of six around n7 at the incenter of the corner triangle
+        // (n1, n3, n5), weights = opposite side lengths (theory eq. 6.2): for a straight-sided
+        // element every fan triangle is then the region nearest to its base, so d is exact
+        const Real l1 = norm(m_.node_x0[P[2]] - m_.node_x0[P[4]]);
+        const Real l3 = norm(m_.node_x0[P[4]] - m_.node_x0[P[0]]);
+        const Real l5 = norm(m_.node_x0[P[0]] - m_.node_x0[P[2]]);
+        const Real per = l1 + l3 + l5;
+        apex = add_virtual({P[0], P[2], P[4]}, {l1 / per, l3 / per, l5 / per});
+        h0 = 0;
+        nh = 6;
+    }
+    for (int j = 0; j < nh; ++j) {
+        const int h = (h0 + j) % 6;
+        const NodeId p = P[h], q = P[(h + 1) % 6];
+        if (!(signed_area(x0(p), x0(q), x0(apex)) > 0)) {
+            const Body& body = m_.bodies[b];
+            throw InputError(
+                SourceLocation{}, "contact.composite_special_case",
+                fmt::format("body {} (\"{}\"): composite element {} is too distorted for the "
+                            "contact fan of paper §2.4 option (b) (fan triangle on nodes {}, {} "
+                            "not counter-clockwise); use composite_special_case = \"split\"",
+                            b, body.name, (t0 - body.tri_begin) / 4, p, q));
+        }
+        add_sub(b, t0 + kHalfEdgeTri[h], p, q, apex);
+    }
+}
+
+void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
     // 4. nodal distances, eqs. 1-2: height 2A/l over every boundary edge of a sub-triangle,
     //    minimum over the sub-triangles (reference configuration, frozen)
     constexpr Real kUnset = std::numeric_limits<Real>::infinity();

@@ -595,7 +595,8 @@ private:
             m.contact.algorithm = ContactAlgorithm::None;
             return;
         }
-        std::vector<std::string> keys = {"algorithm", "buffer", "two_way", "scaling", "pair"};
+        std::vector<std::string> keys = {"algorithm", "buffer", "two_way",
+                                         "scaling",   "pair",   "composite_special_case"};
         keys.insert(keys.end(), kContactLawKeys.begin(), kContactLawKeys.end());
         Fields f(src_, *t, "[contact]", "contact", keys);
         ContactModel& c = m.contact;
@@ -615,6 +616,14 @@ private:
             c.scaling = f.choice("scaling", std::nullopt, {"mass", "length"}) == "mass"
                             ? ContactScaling::Mass
                             : ContactScaling::Length;
+        }
+        // 6-node composite elements with 2 or 3 boundary edges: paper §2.4 option (b) "fan" or
+        // option (a) "split" (docs/theory.md §6.1.1)
+        if (f.has("composite_special_case")) {
+            c.composite_special_case =
+                f.choice("composite_special_case", std::nullopt, {"fan", "split"}) == "fan"
+                    ? CompositeSpecialCase::Fan
+                    : CompositeSpecialCase::Split;
         }
 
         // per material pair overrides
