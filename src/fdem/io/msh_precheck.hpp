@@ -1,15 +1,34 @@
-// Structural pre-check of ASCII MSH 2 files before they reach Gmsh: Gmsh 4.8 crashes (SEGV in
-// MElementFactory::create, found by tests/fuzz mesh target) on an $Elements line with fewer node
-// tags than its element type needs. MSH 4 and binary files are not pre-checked.
+// Structural pre-check of .msh files before they reach Gmsh. Gmsh 4.8.4 trusts the counts and
+// tags in a file: fuzzing (tests/fuzz, mesh target) and crafted files made it
+//   - crash (SEGV in MElementFactory::create) on an ASCII MSH 2 element line with fewer node ids
+//     than its type needs;
+//   - allocate tens of GB (binary MSH 2 element block header with a negative tag count; MSH 4.1
+//     node/element totals, block sizes, entity physical/bounding counts) before reading the data;
+//   - write past its node and element caches when the blocks hold more than the header's total;
+//   - crash (SEGV in getMeshVertexByTag(int)) on an MSH 4.1 node tag beyond the int range.
+// The walker below reads the file the way Gmsh does (sections found with fgets(256) lines and
+// matched by prefix, ASCII values with scanf semantics, binary blocks with fread) and rejects any
+// such value before Gmsh sees it. It does not validate what Gmsh itself reports cleanly (an
+// undefined node, a truncated section): those keep Gmsh's message.
 #pragma once
 
 #include <string>
 
 namespace fdem::io {
 
-/// Throws InputError (file:line) if the $Elements section of an ASCII MSH 2 file is malformed:
-/// its count, non-integer fields, an unknown element type or a field count that does not match
-/// the type (undefined node ids are left to Gmsh, which reports them). Other files pass.
+/// Throws InputError (file:line, the section and the byte offset for binary data) if the .msh
+/// file at path holds a value that would make Gmsh 4.8 crash or allocate without bound:
+///  - the file's first section is not $MeshFormat, or a second $MeshFormat follows;
+///  - a version other than MSH 2.x or 4.1, a file type other than 0 (ASCII) or 1 (binary), a
+///    binary data size other than 8, a binary byte-order mark other than 1;
+///  - sections fdem does not read and Gmsh would interpret ($ParametricNodes, $Periodic,
+///    $PartitionedEntities, $GhostElements, $Parametrizations, post-processing data);
+///  - a count larger than the bytes left in the file can hold (at least 2 bytes per ASCII value,
+///    the exact record size for binary data), a negative count, blocks holding more entries than
+///    their section header's total (or fewer);
+///  - an unknown element type, a node or element tag outside 1..2147483647 (MSH 4.1);
+///  - in ASCII MSH 2, an $Elements line whose field count does not match its type.
+/// A file without any section (e.g. empty) passes: Gmsh reads an empty model from it.
 void precheck_msh(const std::string& path);
 
 }  // namespace fdem::io
