@@ -118,8 +118,7 @@ TEST(MshPrecheck, BinaryMsh22TagCountLargerThanTheFile) {
     const size_t block = head.size();
     const size_t left = bytes.size() - block - 12;
     EXPECT_EQ(mesh_error(path),
-              prefix(path, 9) + "$Elements (binary) block at byte " +
-                  std::to_string(block) +
+              prefix(path, 9) + "$Elements (binary) block at byte " + std::to_string(block) +
                   " (type 2, count 1, tags 1000000000): 1 element records of 4000000016 bytes "
                   "each need 4000000016 bytes; only " +
                   std::to_string(left) + " bytes are left in the file\n 9 | $Elements");
