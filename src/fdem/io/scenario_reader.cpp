@@ -105,6 +105,7 @@ struct BodyEntry {
 struct LoadedMesh {
     std::string path;
     Real size = 0;
+    int order = 1;  ///< 2: a .geo meshed with 6-node triangles (element = "composite")
     MeshData data;
     std::vector<int> tri_owner;  ///< body entry using each triangle, -1 if none
 };
@@ -287,7 +288,8 @@ private:
     }
 
     // ---- [[body]] --------------------------------------------------------------------------
-    int load_mesh(const Fields& f) {
+    /// order = 2 meshes a .geo with 6-node triangles; a .msh keeps the order it was written with.
+    int load_mesh(const Fields& f, int order) {
         const std::string rel = f.string("mesh", std::nullopt);
         const std::string path = resolve(base_dir_, rel);
         const std::string ext = fs::path(path).extension().string();
@@ -307,15 +309,19 @@ private:
             f.fail(*f.node("mesh"), "mesh",
                    fmt::format("cannot open mesh file '{}': No such file", path));
         }
+        if (ext != ".geo") {
+            order = 1;  // the file decides
+        }
         for (size_t i = 0; i < meshes_.size(); ++i) {
-            if (meshes_[i].path == path && meshes_[i].size == size) {
+            if (meshes_[i].path == path && meshes_[i].size == size && meshes_[i].order == order) {
                 return static_cast<int>(i);
             }
         }
         LoadedMesh lm;
         lm.path = path;
         lm.size = size;
-        lm.data = read_mesh(path, size);
+        lm.order = order;
+        lm.data = read_mesh(path, size, order);
         lm.tri_owner.assign(lm.data.tris.size(), -1);
         meshes_.push_back(std::move(lm));
         return static_cast<int>(meshes_.size() - 1);
@@ -327,9 +333,9 @@ private:
             throw InputError({src_.name, 0, 0}, "body", "no [[body]] defined");
         }
         for (size_t i = 0; i < tables.size(); ++i) {
-            Fields f(src_, *tables[i], fmt::format("[[body]] #{}", i + 1),
-                     fmt::format("body[{}]", i),
-                     {"name", "mesh", "mesh_size", "group", "material", "velocity", "fixed"});
+            Fields f(
+                src_, *tables[i], fmt::format("[[body]] #{}", i + 1), fmt::format("body[{}]", i),
+                {"name", "mesh", "mesh_size", "group", "material", "velocity", "fixed", "element"});
             BodyEntry entry;
             entry.name = f.string("name", std::nullopt);
             entry.table = tables[i];
@@ -346,8 +352,24 @@ private:
             opt.material = material_index(f, "material");
             opt.velocity = f.vec2("velocity", Vec2{0, 0}, "m/s");
             opt.fixed = f.boolean("fixed", false);
-            entry.mesh = load_mesh(f);
+            // element formulation (docs/scenario.md): omitted = from the mesh (6-node triangles
+            // -> composite, 3-node -> cst); "composite" meshes a .geo at order 2
+            if (f.has("element")) {
+                opt.element = f.choice("element", std::nullopt, {"cst", "composite"}) == "cst"
+                                  ? ElementKind::Cst
+                                  : ElementKind::Composite6;
+            }
+            const bool composite = opt.element == ElementKind::Composite6;
+            entry.mesh = load_mesh(f, composite ? 2 : 1);
             LoadedMesh& lm = meshes_[static_cast<size_t>(entry.mesh)];
+            if (composite && !lm.data.second_order()) {
+                f.fail(*f.node("element"), "element",
+                       fmt::format("element = \"composite\" needs 6-node triangles (Gmsh type 9), "
+                                   "but mesh '{}' has 3-node triangles; expected a second-order "
+                                   "mesh (gmsh -2 -order 2, or a .geo file, which is then meshed "
+                                   "at order 2) or element = \"cst\"",
+                                   lm.path));
+            }
 
             // triangles: all of the mesh, or those of one surface physical group
             std::vector<int32_t> tris;
@@ -379,8 +401,20 @@ private:
                     tris[t] = static_cast<int32_t>(t);
                 }
             }
+            // a .geo read at orders 1 and 2 has the same triangles (setOrder only adds nodes):
+            // selections must be disjoint across both copies
+            std::vector<LoadedMesh*> same_file;
+            for (LoadedMesh& other : meshes_) {
+                if (other.path == lm.path && other.size == lm.size &&
+                    other.tri_owner.size() == lm.tri_owner.size()) {
+                    same_file.push_back(&other);
+                }
+            }
             for (const int32_t t : tris) {
-                const int owner = lm.tri_owner[static_cast<size_t>(t)];
+                int owner = -1;
+                for (const LoadedMesh* o : same_file) {
+                    owner = std::max(owner, o->tri_owner[static_cast<size_t>(t)]);
+                }
                 if (owner >= 0) {
                     f.fail(f.has("group") ? *f.node("group") : *f.node("mesh"), "group",
                            fmt::format("triangles of mesh '{}' are already used by body \"{}\"; "

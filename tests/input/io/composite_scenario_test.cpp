@@ -1,0 +1,113 @@
+// The per-body `element` key (issue #7, docs/scenario.md): accepted combinations with the mesh
+// order, and the pinned messages of the rejected ones (file:line:column, key, value, expected).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <string>
+
+#include "fdem/error.hpp"
+#include "fdem/scenario.hpp"
+
+namespace fdem {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+const std::string kData = FDEM_TEST_DATA_DIR;
+
+// line numbers: the [[body]] table starts on line 11, the element key (when given) is line 15
+std::string scenario(const std::string& mesh, const std::string& element_line) {
+    return R"([simulation]
+end_time = 0.01
+dt = "auto"
+
+[[material]]
+name = "rock"
+density = 2500.0
+youngs_modulus = 1.0e10
+poisson_ratio = 0.45
+
+[[body]]
+name = "block"
+material = "rock"
+)" + mesh + "\n" +
+           element_line + "\n";
+}
+
+std::string what_of(const std::string& text) {
+    try {
+        load_scenario_from_string(text, "bad.toml", kData);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no InputError for:\n" << text;
+    return {};
+}
+
+const Body& only_body(const Scenario& sc) {
+    EXPECT_EQ(sc.model.num_bodies(), 1);
+    return sc.model.bodies.at(0);
+}
+
+TEST(CompositeScenario, ElementOmittedIsTakenFromTheMesh) {
+    const Scenario a = load_scenario_from_string(scenario("mesh = \"square_order2_22.msh\"", ""),
+                                                 "ok.toml", kData);
+    EXPECT_EQ(only_body(a).element, ElementKind::Composite6);
+    EXPECT_EQ(a.model.num_tris() % 4, 0);
+    const Scenario b =
+        load_scenario_from_string(scenario("mesh = \"square_22_ascii.msh\"", ""), "ok.toml", kData);
+    EXPECT_EQ(only_body(b).element, ElementKind::Cst);
+    // a .geo without the key is meshed at order 1: CST
+    const Scenario c = load_scenario_from_string(
+        scenario("mesh = \"square.geo\"\nmesh_size = 0.25", ""), "ok.toml", kData);
+    EXPECT_EQ(only_body(c).element, ElementKind::Cst);
+}
+
+TEST(CompositeScenario, CompositeMeshesGeoAtOrderTwo) {
+    const Scenario c = load_scenario_from_string(
+        scenario("mesh = \"square.geo\"\nmesh_size = 0.25", "element = \"composite\""), "ok.toml",
+        kData);
+    const Scenario l = load_scenario_from_string(
+        scenario("mesh = \"square.geo\"\nmesh_size = 0.25", "element = \"cst\""), "ok.toml", kData);
+    EXPECT_EQ(only_body(c).element, ElementKind::Composite6);
+    EXPECT_EQ(only_body(l).element, ElementKind::Cst);
+    EXPECT_EQ(c.model.num_tris(), 4 * l.model.num_tris());  // same corner mesh, 4 sub-triangles
+}
+
+TEST(CompositeScenario, CstOnSixNodeMeshSplitsEachIntoFourTriangles) {
+    const Scenario c = load_scenario_from_string(
+        scenario("mesh = \"square_order2_22.msh\"", "element = \"composite\""), "ok.toml", kData);
+    const Scenario l = load_scenario_from_string(
+        scenario("mesh = \"square_order2_22.msh\"", "element = \"cst\""), "ok.toml", kData);
+    EXPECT_EQ(only_body(l).element, ElementKind::Cst);
+    EXPECT_EQ(l.model.tri_nodes, c.model.tri_nodes);
+}
+
+TEST(CompositeScenario, CompositeOnThreeNodeMshIsRejected) {
+    const std::string w =
+        what_of(scenario("mesh = \"square_22_ascii.msh\"", "element = \"composite\""));
+    EXPECT_THAT(w, StartsWith("bad.toml:15:11: error: body \"block\": element = \"composite\" "
+                              "needs 6-node triangles (Gmsh type 9), but mesh '" +
+                              kData +
+                              "/square_22_ascii.msh' has 3-node triangles; expected a "
+                              "second-order mesh (gmsh -2 -order 2, or a .geo file, which is "
+                              "then meshed at order 2) or element = \"cst\""));
+    EXPECT_THAT(w, HasSubstr("15 | element = \"composite\""));
+}
+
+TEST(CompositeScenario, UnknownElementIsRejected) {
+    const std::string w = what_of(scenario("mesh = \"square_22_ascii.msh\"", "element = \"cts\""));
+    EXPECT_THAT(w, StartsWith("bad.toml:15:11: error: body \"block\": element must be one of "
+                              "\"cst\", \"composite\", got \"cts\"; did you mean \"cst\"?"));
+}
+
+TEST(CompositeScenario, ElementMustBeAString) {
+    const std::string w = what_of(scenario("mesh = \"square_22_ascii.msh\"", "element = 6"));
+    EXPECT_THAT(w, StartsWith("bad.toml:15:11: error: body \"block\": element must be one of "
+                              "\"cst\", \"composite\", got a number 6"));
+}
+
+}  // namespace
+}  // namespace fdem
