@@ -258,6 +258,51 @@ TEST(CompositeContact, RectangleMixesSpecialAndPlainElements) {
     }
 }
 
+// the same bodies through the mesh path (6-node MeshData -> add_bodies, issue #7 layout)
+// give the same contact topology as the hand-built ones above
+TEST(CompositeContact, MeshPathMatchesHandBuiltBodies) {
+    auto from_mesh = [](const scenes::CompositeMesh& cm) {
+        MeshData g;
+        g.file = "test";
+        g.nodes = cm.nodes;
+        for (const auto& e : cm.elems) {
+            g.tris.push_back({e[0], e[2], e[4]});
+            g.tri_mid.push_back({e[1], e[3], e[5]});
+        }
+        g.tri_tag.assign(g.tris.size(), 1);
+        return g;
+    };
+    for (Option o : {Option::Fan, Option::Split}) {
+        for (int shape = 0; shape < 3; ++shape) {
+            const MeshData g = shape == 0   ? from_mesh(single())
+                               : shape == 1 ? from_mesh(diamond())
+                                            : make_rectangle_mesh_order2(0, 0, 2, 1, 2, 2);
+            CompositeScene sc(o);
+            BodyOptions opt;
+            opt.name = "mesh";
+            add_bodies(sc.m, g, testing::all_tris(g), opt);
+            const Model& m = sc.finalize();
+            ASSERT_EQ(m.bodies[0].element, ElementKind::Composite6);
+            const Counts c = counts(m);
+            const bool fan = o == Option::Fan;
+            // expected: SingleElementCounts, DiamondCounts, RectangleMixesSpecialAndPlainElements
+            const Counts want = shape == 0   ? Counts{6, 6, 4, 3, fan ? 1u : 3u, fan ? 6u : 10u}
+                                : shape == 1 ? Counts{8, 8, 8, 2, fan ? 0u : 6u, fan ? 8u : 20u}
+                                             : Counts{16, 0, 24, 2, fan ? 0u : 6u, fan ? 24u : 36u};
+            EXPECT_EQ(c.bedges, want.bedges) << name_of(o) << " " << shape;
+            if (shape < 2) EXPECT_EQ(c.bnodes, want.bnodes);
+            EXPECT_EQ(c.btris, want.btris);
+            EXPECT_EQ(c.chords, want.chords);
+            EXPECT_EQ(c.virt, want.virt);
+            EXPECT_EQ(c.subs, want.subs);
+            if (shape == 0 && fan) {
+                const FieldError e = field_error(m, kTri, 2000, 4);
+                EXPECT_LE(e.max_abs, 1e-12 * 5.0);  // exact (FanFieldIsExact), size 5 m
+            }
+        }
+    }
+}
+
 // ---- the distance field against the exact distance (paper Figs. 15-18) -----------------------
 
 // option (b): exact for a single element (incenter fan) and the diamond (fan around its centre):
