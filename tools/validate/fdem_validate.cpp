@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "validation/cases/block_impact.hpp"
+#include "validation/cases/composite_field_maps.hpp"
 #include "validation/cases/disk_impact.hpp"
 #include "validation/cases/field_maps.hpp"
 #include "validation/cases/sliding_block.hpp"
@@ -98,6 +99,8 @@ int main(int argc, char** argv) {
     if (want("slide"))
         add(sliding_block_suite(quick ? SlidingOptions::quick() : SlidingOptions{}, out));
     if (want("field")) add(field_maps_suite(out));
+    // paper Figs. 15-18: the 6-node composite element, options (b) and (a) of paper §2.4
+    if (want("field")) add(composite_field_maps_suite(out));
 
     FILE* f = std::fopen(path("checks.csv").c_str(), "w");
     if (!f) {
