@@ -83,6 +83,12 @@ inline Check check(std::string id, std::string name, double measured, Rel rel, d
                  tol,           std::move(unit), std::move(why)};
 }
 
+/// Adds a square-celled rectangle body [x0, x0 + w] x [y0, y0 + hgt] with node spacing w / nx
+/// (nx x ny cells of CSTs by default; validation/cases/composite_dynamics.hpp passes a builder of
+/// 6-node composite elements with the same nodes). Used for the block of the dynamic cases.
+using BlockBuilder = std::function<void(Model& m, double x0, double y0, double w, double hgt,
+                                        int nx, int ny, Vec2 velocity, const std::string& name)>;
+
 /// Columns of equal length written as one CSV file (header = column names).
 struct Table {
     std::vector<std::string> names;
@@ -137,6 +143,21 @@ inline double max_active_depth(const State& s) {
     for (const auto& a : s.contact.active)
         d = std::max(d, a.h.d_prev);
     return d;
+}
+
+/// Mean contact depth weighted by the target force scale (m_j / mbar or l_j / lbar, paper eq. 19):
+/// sum s_j d_j / sum s_j over the active pairs of the last step. On a flat face the normal force
+/// is sum s_j 2 k_n d_j (g = 2d, |grad d| = 1), so for a given load this mean scales exactly as
+/// 1/k_n as long as the same nodes touch.
+inline double scaled_mean_depth(const Model& m, const State& s) {
+    double sd = 0, ss = 0;
+    for (const auto& a : s.contact.active) {
+        if (a.h.d_prev <= 0) continue;
+        const double sc = m.contact.node_scale[static_cast<size_t>(a.node)];
+        sd += sc * a.h.d_prev;
+        ss += sc;
+    }
+    return ss > 0 ? sd / ss : 0.0;
 }
 
 inline double mean(const std::vector<double>& v) {

@@ -6,6 +6,7 @@
 // penetration is frozen and the friction exposes any non-smoothness of the contact field.
 #pragma once
 
+#include <random>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,13 @@ struct SlidingOptions {
     /// loaded while relaxing (NOTES.md, T17).
     double offset_cells = 0;
     ContactScaling scaling = ContactScaling::Mass;  ///< target force scale (eq. 19 or length)
+    double penalty = 5e9;                           ///< k_n [Pa] (spec §5: 5 E)
+    /// Interior nodes of the platform moved by up to this fraction of its cell size (uniform
+    /// random, fixed seed); its faces stay flat. Spec §5.3: exposes the amplitude jumps of
+    /// baseline B between elements of unequal heights (0 = structured platform).
+    double platform_perturb = 0;
+    /// Smooth (Lei et al. 2020) or a legacy potential for the comparison of spec T16/T17
+    ContactAlgorithm algorithm = ContactAlgorithm::Smooth;
     static SlidingOptions quick() {
         SlidingOptions o;
         o.cells = 10;
@@ -50,6 +58,7 @@ constexpr double kSlideG = 9.8, kSlideMu = 0.5, kSlideMass = 1000.0;
 struct SlidingResult {
     Table series{{"t", "d", "v", "friction", "normal", "d_analytic", "v_analytic"}};
     double v_i = 0;
+    double h = 0;  ///< element size [m]
     bool fixed = false;
     double t_kick = 0;
     double d_max = NAN;           ///< CoM displacement at the end [m]
@@ -61,20 +70,51 @@ struct SlidingResult {
     double spike_max = 0;         ///< largest |f - median| of a spike [N/m]
     double normal_relaxed = NAN;  ///< contact normal force at the kick [N/m]
     double depth_relaxed = NAN;   ///< largest contact depth at the kick [m]
-    double airborne = NAN;        ///< fraction of the samples while sliding with no normal force
-    std::string tag;              ///< variant (names of the checks and of the CSV file)
+    double depth_relaxed_mean = NAN;  ///< scaled_mean_depth at the kick [m]
+    double airborne = NAN;  ///< fraction of the samples while sliding with no normal force
+    /// Smoothness metrics of spec §6.3 on the friction time series (every step while sliding,
+    /// spikes included): R = (max - min) / mean, TV = sum |f_{k+1} - f_k| / mean
+    double friction_range = NAN;
+    double friction_tv = NAN;
+    double slide_window = NAN;  ///< sliding distance covered by that window [m]
+    std::string tag;            ///< variant (names of the checks and of the CSV file)
 };
 
-inline Model make_sliding_block(const SlidingOptions& o, double v_i, bool fixed) {
+inline Model make_sliding_block(const SlidingOptions& o, double v_i, bool fixed,
+                                const BlockBuilder& block = {}) {
     Model m;
     m.materials.push_back(scenes::paper_material("paper"));
     m.materials[0].damping_ratio = o.damping_ratio;
     const double h = 1.0 / o.cells;
-    scenes::add_rectangle(m, 1.0 + o.offset_cells * h, 0.25, 1.0, 1.0, o.cells, o.cells, 0, false,
-                          {}, false, "block");
-    scenes::add_rectangle(m, 0.0, 0.0, 10.0, 0.25, static_cast<int>(std::lround(10.0 / h)),
-                          std::max(1, static_cast<int>(std::lround(0.25 / h))), 0, true, {}, false,
-                          "platform");
+    if (block) {
+        block(m, 1.0 + o.offset_cells * h, 0.25, 1.0, 1.0, o.cells, o.cells, {}, "block");
+    } else {
+        scenes::add_rectangle(m, 1.0 + o.offset_cells * h, 0.25, 1.0, 1.0, o.cells, o.cells, 0,
+                              false, {}, false, "block");
+    }
+    {
+        const int nx = static_cast<int>(std::lround(10.0 / h));
+        const int ny = std::max(1, static_cast<int>(std::lround(0.25 / h)));
+        MeshData pm = make_rectangle_mesh(0.0, 0.0, 10.0, 0.25, nx, ny, false);
+        if (o.platform_perturb > 0) {
+            std::mt19937 rng(20201);
+            std::uniform_real_distribution<double> u(-o.platform_perturb, o.platform_perturb);
+            const double hx = 10.0 / nx, hy = 0.25 / ny;
+            for (Vec2& p : pm.nodes) {
+                const double ex = u(rng), ey = u(rng);  // drawn for every node: same sequence
+                if (p.x > 1e-9 && p.x < 10.0 - 1e-9 && p.y > 1e-9 && p.y < 0.25 - 1e-9)
+                    p += Vec2{ex * hx, ey * hy};
+            }
+        }
+        std::vector<int32_t> all(pm.tris.size());
+        for (size_t i = 0; i < all.size(); ++i)
+            all[i] = static_cast<int32_t>(i);
+        BodyOptions opt;
+        opt.name = "platform";
+        opt.material = 0;
+        opt.fixed = true;
+        add_bodies(m, pm, all, opt);
+    }
     m.gravity = {0, -kSlideG};
     m.mass_damping = {o.mass_damping, o.relax};
     VelocityKick k;
@@ -92,8 +132,8 @@ inline Model make_sliding_block(const SlidingOptions& o, double v_i, bool fixed)
         bc.start = o.relax;
         m.bcs.push_back(bc);
     }
-    m.contact.algorithm = ContactAlgorithm::Smooth;
-    m.contact.params.penalty = 5e9;  // spec §5
+    m.contact.algorithm = o.algorithm;
+    m.contact.params.penalty = o.penalty;
     m.contact.params.friction = kSlideMu;
     m.contact.params.damping = o.normal_damping;
     m.contact.params.damp_normal_only = true;
@@ -103,10 +143,12 @@ inline Model make_sliding_block(const SlidingOptions& o, double v_i, bool fixed)
     return m;
 }
 
-inline SlidingResult run_sliding_block(const SlidingOptions& o, double v_i, bool fixed) {
-    Model m = make_sliding_block(o, v_i, fixed);
+/// Run the sliding block on a model built by make_sliding_block (or an equivalent one with
+/// another element formulation, validation/cases/composite_dynamics.hpp).
+inline SlidingResult run_sliding_block(const SlidingOptions& o, double v_i, bool fixed, Model m) {
     SlidingResult r;
     r.v_i = v_i;
+    r.h = 1.0 / o.cells;
     r.fixed = fixed;
     r.t_kick = o.relax;
     const double a = kSlideG * kSlideMu;  // deceleration [m/s^2]
@@ -122,7 +164,7 @@ inline SlidingResult run_sliding_block(const SlidingOptions& o, double v_i, bool
         std::max<int64_t>(1, static_cast<int64_t>(std::ceil((t_end - o.relax) / dt / 1500)));
     double x0 = NAN;
     std::vector<double> fr;
-    double n_slide = 0, n_air = 0;
+    double n_slide = 0, n_air = 0, d_begin = NAN, d_end = NAN;
     for (int64_t k = 0; k < n; ++k) {
         step(m, s);
         const double t = s.energy.time;  // forces and x^n belong to t^n
@@ -132,6 +174,7 @@ inline SlidingResult run_sliding_block(const SlidingOptions& o, double v_i, bool
             x0 = b.com.x;
             r.normal_relaxed = b.contact_force.y;
             r.depth_relaxed = max_active_depth(s);
+            r.depth_relaxed_mean = scaled_mean_depth(m, s);
         }
         const double tt = t - o.relax;
         const double v_an = std::max(0.0, v_i - a * tt);
@@ -146,6 +189,8 @@ inline SlidingResult run_sliding_block(const SlidingOptions& o, double v_i, bool
             r.max_d_error = std::max(r.max_d_error, std::abs(d - d_an));
         }
         if (tt > 0.02 && tt < t_stop - 0.02) {
+            if (std::isnan(d_begin)) d_begin = d;
+            d_end = d;
             fr.push_back(-b.contact_force.x);
             n_slide += 1;
             if (b.contact_force.y == 0) n_air += 1;
@@ -167,7 +212,20 @@ inline SlidingResult run_sliding_block(const SlidingOptions& o, double v_i, bool
         }
     }
     r.friction_std = stddev(calm);
+    double fmin = INFINITY, fmax = -INFINITY, tv = 0;
+    for (size_t k = 0; k < fr.size(); ++k) {
+        fmin = std::min(fmin, fr[k]);
+        fmax = std::max(fmax, fr[k]);
+        if (k > 0) tv += std::abs(fr[k] - fr[k - 1]);
+    }
+    r.friction_range = (fmax - fmin) / r.friction_mean;
+    r.friction_tv = tv / r.friction_mean;
+    r.slide_window = d_end - d_begin;
     return r;
+}
+
+inline SlidingResult run_sliding_block(const SlidingOptions& o, double v_i, bool fixed) {
+    return run_sliding_block(o, v_i, fixed, make_sliding_block(o, v_i, fixed));
 }
 
 /// One sliding configuration of the suite (NOTES.md explains each choice).
