@@ -16,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include "element/composite.hpp"
 #include "element/cst.hpp"
 #include "fdem/error.hpp"
 #include "fdem/output.hpp"
@@ -31,10 +32,14 @@ TriFields tri_fields(const Model& m, const State& s, TriId t) {
     // F = Ds Dm^-1 (theory eq. 3.1); elastic Cauchy stress (theory eq. 2.2, spec §3.1).
     // The viscous part eta D is not included: it needs v at the same time level as x, which the
     // staggered central-difference state does not hold (docs/output.md).
+    // Sub-triangles of composite elements carry their isochoric stress plus the composite's
+    // pressure (theory eq. 3.8).
     const Mat2 F = deformation_gradient(m, s.x.data(), t);
     const Material& mat = m.materials[static_cast<size_t>(m.tri_material[t])];
     TriFields out;
-    out.stress = cauchy_stress(mat, F);
+    out.stress = m.bodies[static_cast<size_t>(m.tri_body[t])].element == ElementKind::Composite6
+                     ? composite_stress(m, s.x.data(), t)
+                     : cauchy_stress(mat, F);
     out.strain = green_lagrange(F);
     const Mat2& sg = out.stress;
     // von Mises of the in-plane tensor with sigma_zz = 0 (plane-stress form)
@@ -291,6 +296,35 @@ void write_vtu(const std::string& path, const Model& m, const State& s,
                     nullptr});
     cell.push_back(id_array("body", m.tri_body));
     cell.push_back(id_array("material", m.tri_material));
+    // composite elements (theory §3.5): the id of the composite owning each sub-triangle,
+    // numbered over the model in triangle order (-1 for CST triangles); only written when the
+    // model has a composite body
+    std::vector<int32_t> composite_base(static_cast<size_t>(m.num_bodies()), -1);
+    int32_t n_composites = 0;
+    for (size_t b = 0; b < composite_base.size(); ++b) {
+        const Body& body = m.bodies[b];
+        if (body.element == ElementKind::Composite6) {
+            composite_base[b] = n_composites;
+            n_composites += (body.tri_end - body.tri_begin) / 4;
+        }
+    }
+    if (n_composites > 0) {
+        cell.push_back({"composite", VtkType::Int32, 1, nt,
+                        [&m, &composite_base](int64_t b, int64_t e, unsigned char* out) {
+                            for (int64_t t = b; t < e; ++t) {
+                                const BodyId id = m.tri_body[static_cast<size_t>(t)];
+                                const int32_t base = composite_base[static_cast<size_t>(id)];
+                                const int32_t c =
+                                    base < 0
+                                        ? -1
+                                        : base + (static_cast<int32_t>(t) -
+                                                  m.bodies[static_cast<size_t>(id)].tri_begin) /
+                                                     4;
+                                std::memcpy(out + (t - b) * 4, &c, sizeof c);
+                            }
+                        },
+                        nullptr});
+    }
     for (const ExtraField& f : extra_cell) {
         cell.push_back(extra_array(f, nt, "cell"));
     }
