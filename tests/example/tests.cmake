@@ -6,6 +6,7 @@ set(FDEM_EXAMPLES
   "02_elastic_bar           2.0e-4"
   "03_contact_slide         0.05"
   "04_particles             2.0e-5"
+  "05_composite             2.0e-3"
 )
 foreach(entry ${FDEM_EXAMPLES})
   string(REGEX REPLACE " +" ";" parts "${entry}")
