@@ -99,12 +99,17 @@ struct ContactState {
     std::vector<int32_t> cand_tri;
 
     // ---- broad-phase grid scratch ----------------------------------------------------
-    std::vector<Vec2> tri_center;   ///< sub-triangle centroid at the last rebuild [m]
-    std::vector<Real> tri_radius;   ///< bounding-circle radius about the centroid [m]
+    /// sub-triangle centroid at the last rebuild [m]; find_candidates() leaves it in cell
+    /// order (k-th entry: sub-triangle cell_items[k]), the brute force in sub-triangle order
+    std::vector<Vec2> tri_center;
+    /// bounding-circle radius about the centroid [m], ordered like tri_center
+    std::vector<Real> tri_radius;
     std::vector<int32_t> tri_cell;  ///< grid cell of each sub-triangle
     std::vector<int32_t> cell_start;
     std::vector<int32_t> cell_items;
-    std::vector<int32_t> query;  ///< per-node scratch list
+    /// scratch: per-node list of the broad phase, then per candidate pair the sub-triangle the
+    /// narrow phase located (-1: not in contact; pair_out[p] is written only where >= 0)
+    std::vector<int32_t> query;
 
     // ---- pair history: ping-pong buffers, both sorted by (node, body) ----------------
     std::vector<ActiveContact> active;

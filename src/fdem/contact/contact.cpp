@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "contact/field.hpp"
@@ -25,6 +26,9 @@ namespace {
 
 constexpr Real kLocateEps = 1e-12;     // N_i >= -eps counts as inside (spec §4.5-1)
 constexpr Real kLostCheckRatio = 0.1;  // depth ratio above which a lost pair is tested
+// early reject of the locate test: c_i < -kRejectMargin |2A| means N_i < -1e-9, far beyond
+// -kLocateEps plus the rounding of N_i (~1e-15), and far below any geometric distance
+constexpr Real kRejectMargin = 1e-9;
 // candidate pairs per step below which the narrow phase runs on one thread (fork/join of a
 // parallel region costs about as much as a few thousand pair evaluations)
 constexpr int32_t kMinParallelPairs = 2048;
@@ -124,14 +128,20 @@ void update_virtual_nodes(const Model& m, State& s) {
 namespace {
 
 // Narrow phase and law of candidate pair pr (spec §4.5-1 to -7): reads positions, velocities
-// and the previous history active[out.hist]; writes only out. Independent of every other pair,
-// so the pairs can be evaluated in any order and on any thread.
-void evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const Vec2* v,
-                   const Vec2* xv, const Vec2* vv, Real dt, int32_t pr, PairResult& out) {
+// and the previous history (looked up in cs.active, sorted by (node, body)); returns the located
+// sub-triangle, or -1 when the pair is not in contact, and writes out only in contact.
+// Independent of every other pair, so the pairs can be evaluated in any order and on any thread.
+//
+// Early reject (docs/performance.md): in the contact-heavy pack only ~0.3 % of the candidate
+// pairs touch, so the locate loop first tests the signs of the three edge functions
+// c_i = cross(p_{i+1} - x, p_{i+2} - x) (N_i = c_i / 2A, eq. 4) against the signed area without
+// a division; only a point within a margin of the triangle goes on to barycentric(), which
+// computes the same c_i, so the accepted triangle and N are bitwise those of the full test.
+int32_t evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const Vec2* v,
+                      const Vec2* xv, const Vec2* vv, Real dt, int32_t pr, PairResult& out) {
     const ContactModel& cm = m.contact;
     const NodeId j = cs.cand_node[pr];
     const BodyId c = cs.cand_body[pr];
-    out.tri = -1;
 
     // locate x_j: the candidate sub-triangle with the largest min N_i >= -eps
     const Vec2 xj = x[j];
@@ -142,6 +152,14 @@ void evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const 
     for (int32_t k = cs.cand_begin[pr]; k < cs.cand_begin[pr + 1]; ++k) {
         const auto& q = cm.sub_tri[cs.cand_tri[k]];
         const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
+        // N_i = c_i * (1 / a2) with |rounding| < 1e-15 relative, so any c_i beyond
+        // kRejectMargin |a2| on the outer side gives N_i < -kLocateEps: rejected either way
+        // (NaN and a2 == 0 fall through to barycentric(), which decides as before)
+        const Real a2 = cross(p[1] - p[0], p[2] - p[0]);
+        const Real c0 = cross(p[1] - xj, p[2] - xj), c1 = cross(p[2] - xj, p[0] - xj),
+                   c2 = cross(p[0] - xj, p[1] - xj);
+        const Real lim = kRejectMargin * std::abs(a2);
+        if (a2 > 0 ? std::min({c0, c1, c2}) < -lim : std::max({c0, c1, c2}) > lim) continue;
         Real N[3];
         if (!barycentric(p[0], p[1], p[2], xj, N)) continue;
         const Real mn = std::min({N[0], N[1], N[2]});
@@ -156,11 +174,21 @@ void evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const 
             pbest[2] = p[2];
         }
     }
-    if (best < 0) return;
+    if (best < 0) return -1;
     const auto& q = cm.sub_tri[best];
     const Real dist[3] = {cm.node_dist[q[0]], cm.node_dist[q[1]], cm.node_dist[q[2]]};
     evaluate_field(cm, best, pbest, dist, fs);
-    if (!(fs.d > 0)) return;
+    if (!(fs.d > 0)) return -1;
+
+    // history of the pair: binary search in the previous active list (only pairs in contact
+    // come here, a few per thousand candidates)
+    const auto it =
+        std::lower_bound(cs.active.begin(), cs.active.end(), std::pair{j, c},
+                         [](const ActiveContact& a, std::pair<NodeId, BodyId> k) {
+                             return a.node < k.first || (a.node == k.first && a.body < k.second);
+                         });
+    const bool has_hist = it != cs.active.end() && it->node == j && it->body == c;
+    out.hist = has_hist ? static_cast<int32_t>(it - cs.active.begin()) : -1;
 
     // the law (eqs. 5-19) with v_r = v_c - v_j, v_c = sum N_i v_i (eq. 13)
     const BodyId bt = m.node_body[j];
@@ -169,7 +197,7 @@ void evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const 
     Vec2 vc;
     for (int k = 0; k < 3; ++k)
         vc += fs.N[k] * cpos(cm, v, vv, q[k]);
-    out.h = out.hist >= 0 ? cs.active[static_cast<size_t>(out.hist)].h : PairHistory{};
+    out.h = has_hist ? it->h : PairHistory{};
     const LawResult r = contact_law(p, fs.d, fs.grad, vc - v[j], scale, dt, out.h);
 
     // depth diagnostics: d relative to the local layer thickness
@@ -181,6 +209,7 @@ void evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const 
     out.f = r.f;
     out.stored = r.stored;
     out.dissipated = r.dissipated;
+    return best;
 }
 
 }  // namespace
@@ -227,38 +256,27 @@ void add_contact_forces(const Model& m, State& s) {
         ++cs.rebuilds;
     }
 
-    // 3a. match every candidate pair with its history in the previous active list (both sorted
-    //     by (node, body))
+    // 3a. narrow phase and law of every pair, independent of each other: in parallel into the
+    //     per-pair buffers (cs.query for all, pair_out only for pairs in contact; below
+    //     kMinParallelPairs fork/join dominates)
     const int32_t npairs = static_cast<int32_t>(cs.cand_node.size());
     auto before = [](const ActiveContact& a, NodeId j, BodyId c) {
         return a.node < j || (a.node == j && a.body < c);
     };
     cs.pair_out.resize(static_cast<size_t>(npairs));
-    size_t ia = 0;
-    for (int32_t pr = 0; pr < npairs; ++pr) {
-        const NodeId j = cs.cand_node[pr];
-        const BodyId c = cs.cand_body[pr];
-        while (ia < cs.active.size() && before(cs.active[ia], j, c))
-            ++ia;
-        PairResult& o = cs.pair_out[static_cast<size_t>(pr)];
-        o.hist = -1;
-        if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) {
-            o.hist = static_cast<int32_t>(ia++);
-        }
-    }
-
-    // 3b. narrow phase and law of every pair, independent of each other: in parallel into the
-    //     per-pair buffer (a pair costs ~0.1 us; below kMinParallelPairs fork/join dominates)
+    cs.query.resize(static_cast<size_t>(npairs));  // the located sub-triangle per pair
     PairResult* out = cs.pair_out.data();
+    int32_t* pair_tri = cs.query.data();
     const ContactState& ccs = cs;
 #pragma omp parallel for schedule(static) if (npairs > kMinParallelPairs)
     for (int32_t pr = 0; pr < npairs; ++pr)
-        evaluate_pair(m, ccs, x, v, xv, vv, dt, pr, out[pr]);
+        pair_tri[pr] = evaluate_pair(m, ccs, x, v, xv, vv, dt, pr, out[pr]);
 
-    // 3c. apply in pair order, releasing the histories of pairs that left contact in the same
-    //     merged order: the sums and the force accumulation are those of a serial loop
+    // 3b. apply in pair order, merged with the previous active list (both sorted by (node,
+    //     body)), releasing the histories of pairs that left contact in that merged order: the
+    //     sums and the force accumulation are those of a serial loop
     Real stored = 0, dissipated = 0;
-    ia = 0;
+    size_t ia = 0;
     cs.active_next.clear();
     auto release = [&](const ActiveContact& a) {
         const BodyId bt = m.node_body[a.node];
@@ -275,14 +293,16 @@ void add_contact_forces(const Model& m, State& s) {
     for (int32_t pr = 0; pr < npairs; ++pr) {
         const NodeId j = cs.cand_node[pr];
         const BodyId c = cs.cand_body[pr];
-        const PairResult& o = out[pr];
         while (ia < cs.active.size() && before(cs.active[ia], j, c))
             release(cs.active[ia++]);
-        if (o.hist >= 0) ++ia;  // o.hist == ia - 1: matched in 3a
-        if (o.tri < 0) {
-            if (o.hist >= 0) release(cs.active[static_cast<size_t>(o.hist)]);
+        const bool matched =
+            ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c;
+        if (matched) ++ia;
+        if (pair_tri[pr] < 0) {
+            if (matched) release(cs.active[ia - 1]);
             continue;
         }
+        const PairResult& o = out[pr];
 
         // f on the target, -N_i f on the contactor (eq. 20)
         const auto& q = cm.sub_tri[o.tri];

@@ -3,6 +3,7 @@
 #include "detect/broad_phase.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace fdem {
@@ -13,37 +14,110 @@ inline Vec2 cpos(const ContactModel& cm, const Vec2* x, const Vec2* xv, NodeId i
     return i < cm.num_real_nodes ? x[i] : xv[i - cm.num_real_nodes];
 }
 
-// bounding circles of the contactor sub-triangles at the current positions
-Real bounding_circles(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs) {
+// bounding circles of the contactor sub-triangles at the current positions; returns the largest
+// radius and the bounding box of the centroids
+Real bounding_circles(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs, Vec2& lo,
+                      Vec2& hi) {
     const ContactModel& cm = m.contact;
     const int32_t nt = cm.num_sub_tris();
     cs.tri_center.resize(static_cast<size_t>(nt));
     cs.tri_radius.resize(static_cast<size_t>(nt));
+    Vec2* __restrict center = cs.tri_center.data();
+    Real* __restrict radius = cs.tri_radius.data();
+    const std::array<NodeId, 3>* sub = cm.sub_tri.data();
     Real r_max = 0;
+    lo = hi = nt > 0 ? (cpos(cm, x, xv, sub[0][0])) : Vec2{};
     for (int32_t t = 0; t < nt; ++t) {
-        const auto& q = cm.sub_tri[t];
+        const auto& q = sub[t];
         const Vec2 a = cpos(cm, x, xv, q[0]), b = cpos(cm, x, xv, q[1]), c = cpos(cm, x, xv, q[2]);
         const Vec2 ctr = (a + b + c) / 3.0;
         const Real r = std::sqrt(std::max({norm2(a - ctr), norm2(b - ctr), norm2(c - ctr)}));
-        cs.tri_center[t] = ctr;
-        cs.tri_radius[t] = r;
+        center[t] = ctr;
+        radius[t] = r;
         r_max = std::max(r_max, r);
+        lo.x = std::min(lo.x, ctr.x);
+        lo.y = std::min(lo.y, ctr.y);
+        hi.x = std::max(hi.x, ctr.x);
+        hi.y = std::max(hi.y, ctr.y);
     }
     return r_max;
 }
 
-// append the candidates of node j (cs.query holds its accepted sub-triangles, any order)
-void emit(const ContactModel& cm, NodeId j, ContactState& cs) {
-    std::sort(cs.query.begin(), cs.query.end());  // tri ids ascending = bodies ascending
-    for (size_t k = 0; k < cs.query.size(); ++k) {
-        const int32_t t = cs.query[k];
-        const BodyId c = cm.sub_body[t];
-        if (k == 0 || cm.sub_body[cs.query[k - 1]] != c) {
-            cs.cand_node.push_back(j);
-            cs.cand_body.push_back(c);
-            cs.cand_begin.push_back(static_cast<int32_t>(cs.cand_tri.size()));
+// sort the n hits of one node by tri id (insertion sort: a node has a handful of hits, and
+// equal ids never occur)
+inline void sort_hits(int32_t* h, int32_t n) {
+    for (int32_t i = 1; i < n; ++i) {
+        const int32_t t = h[i];
+        int32_t k = i;
+        for (; k > 0 && h[k - 1] > t; --k)
+            h[k] = h[k - 1];
+        h[k] = t;
+    }
+}
+
+// Output cursor over cs.cand_*: the vectors keep the length of the previous detection (no
+// clear, so nothing is zero-filled again) and are cut to the written length at the end; the
+// per-node loop writes through raw pointers (no push_back bookkeeping). When full they grow by
+// 25 % within their capacity, beyond it by doubling (rare, and only before warm-up ends).
+struct CandWriter {
+    ContactState& cs;
+    NodeId* node = nullptr;
+    BodyId* body = nullptr;
+    int32_t* begin = nullptr;
+    int32_t* tri = nullptr;
+    size_t pairs = 0, tris = 0, pair_cap = 0, tri_cap = 0;
+
+    explicit CandWriter(ContactState& c) : cs(c) {
+        resize(std::max<size_t>(cs.cand_node.size(), 64), std::max<size_t>(cs.cand_tri.size(), 64));
+    }
+    void resize(size_t np, size_t nt) {
+        pair_cap = np;
+        tri_cap = nt;
+        cs.cand_node.resize(pair_cap);
+        cs.cand_body.resize(pair_cap);
+        cs.cand_begin.resize(pair_cap + 1);
+        cs.cand_tri.resize(tri_cap);
+        node = cs.cand_node.data();
+        body = cs.cand_body.data();
+        begin = cs.cand_begin.data();
+        tri = cs.cand_tri.data();
+    }
+    static size_t grown(size_t need, size_t capacity) {
+        const size_t target = need + need / 4 + 64;
+        return target <= capacity ? target : std::max(need, 2 * capacity);
+    }
+    // room for n more sub-triangles (and at most n more pairs)
+    void reserve(size_t n) {
+        if (pairs + n > pair_cap || tris + n > tri_cap) {
+            resize(std::max(pair_cap, grown(pairs + n, cs.cand_node.capacity())),
+                   std::max(tri_cap, grown(tris + n, cs.cand_tri.capacity())));
         }
-        cs.cand_tri.push_back(t);
+    }
+    void finish() {
+        begin[pairs] = static_cast<int32_t>(tris);
+        cs.cand_node.resize(pairs);
+        cs.cand_body.resize(pairs);
+        cs.cand_begin.resize(pairs + 1);
+        cs.cand_tri.resize(tris);
+    }
+};
+
+// append the candidates of node j: its n accepted sub-triangles h, any order
+void emit(const ContactModel& cm, NodeId j, int32_t* h, int32_t n, CandWriter& w) {
+    sort_hits(h, n);  // tri ids ascending = bodies ascending
+    w.reserve(static_cast<size_t>(n));
+    BodyId prev = kNone;
+    for (int32_t k = 0; k < n; ++k) {
+        const int32_t t = h[k];
+        const BodyId c = cm.sub_body[t];
+        if (c != prev) {
+            w.node[w.pairs] = j;
+            w.body[w.pairs] = c;
+            w.begin[w.pairs] = static_cast<int32_t>(w.tris);
+            ++w.pairs;
+            prev = c;
+        }
+        w.tri[w.tris++] = t;
     }
 }
 
@@ -56,26 +130,25 @@ void clear_candidates(ContactState& cs) {
 
 }  // namespace
 
+// Layout for speed (docs/performance.md): after the counting sort, centres and radii of the
+// sub-triangles are permuted into cell order (row-major cells), so the 3x3 block of a node is three
+// contiguous runs (columns ix-1 .. ix+1 of a row are adjacent cells); the circle test then streams
+// through memory without indirection. Hits are sorted per node by an insertion sort (a few per
+// node). Output order = (node ascending, tri ascending) as before, independent of the grid.
 void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs) {
     const ContactModel& cm = m.contact;
     const Real b = cm.buffer;
-    clear_candidates(cs);
     const int32_t nt = cm.num_sub_tris();
     if (nt == 0) {
+        clear_candidates(cs);
         cs.cand_begin.push_back(0);
         return;
     }
-    const Real r_max = bounding_circles(m, x, xv, cs);
+    Vec2 lo, hi;
+    const Real r_max = bounding_circles(m, x, xv, cs, lo, hi);
 
     // grid over the centroids; cell >= r_max + b, so every accepted centroid lies in the 3x3
     // block around the node's cell
-    Vec2 lo = cs.tri_center[0], hi = lo;
-    for (int32_t t = 1; t < nt; ++t) {
-        lo.x = std::min(lo.x, cs.tri_center[t].x);
-        lo.y = std::min(lo.y, cs.tri_center[t].y);
-        hi.x = std::max(hi.x, cs.tri_center[t].x);
-        hi.y = std::max(hi.y, cs.tri_center[t].y);
-    }
     Real cell = r_max + b;
     // cap the number of cells at ~4 per sub-triangle (sparse layouts): larger cells stay correct
     const Real max_cells = 4.0 * nt + 16.0;
@@ -89,51 +162,86 @@ void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, ContactState
     const size_t ncell = static_cast<size_t>(nx) * static_cast<size_t>(ny);
     cs.cell_start.assign(ncell + 1, 0);
     cs.tri_cell.resize(static_cast<size_t>(nt));
+    cs.cell_items.resize(static_cast<size_t>(nt));
+    // query: first the fill cursor per cell, then the hits of one node (at most nt)
+    cs.query.resize(std::max(ncell, static_cast<size_t>(nt)));
+    Vec2* __restrict center = cs.tri_center.data();
+    Real* __restrict radius = cs.tri_radius.data();
+    int32_t* __restrict tri_cell = cs.tri_cell.data();
+    int32_t* __restrict start = cs.cell_start.data();
+    int32_t* __restrict items = cs.cell_items.data();
     for (int32_t t = 0; t < nt; ++t) {
-        const int32_t ix =
-            std::min(nx - 1, static_cast<int32_t>((cs.tri_center[t].x - lo.x) * inv));
-        const int32_t iy =
-            std::min(ny - 1, static_cast<int32_t>((cs.tri_center[t].y - lo.y) * inv));
-        cs.tri_cell[t] = iy * nx + ix;
-        ++cs.cell_start[static_cast<size_t>(cs.tri_cell[t]) + 1];
+        const int32_t ix = std::min(nx - 1, static_cast<int32_t>((center[t].x - lo.x) * inv));
+        const int32_t iy = std::min(ny - 1, static_cast<int32_t>((center[t].y - lo.y) * inv));
+        tri_cell[t] = iy * nx + ix;
+        ++start[tri_cell[t] + 1];
     }
     for (size_t c = 0; c < ncell; ++c)
-        cs.cell_start[c + 1] += cs.cell_start[c];
-    cs.cell_items.resize(static_cast<size_t>(nt));
-    cs.query.assign(cs.cell_start.begin(), cs.cell_start.end() - 1);  // fill cursor
-    for (int32_t t = 0; t < nt; ++t) {
-        cs.cell_items[static_cast<size_t>(cs.query[static_cast<size_t>(cs.tri_cell[t])]++)] = t;
+        start[c + 1] += start[c];
+    {
+        int32_t* __restrict cursor = cs.query.data();
+        std::copy(start, start + ncell, cursor);
+        for (int32_t t = 0; t < nt; ++t)
+            items[cursor[tri_cell[t]]++] = t;
+    }
+    // centres and radii into cell order, in place along the cycles of the permutation
+    // (entry k takes sub-triangle items[k]; tri_cell, no longer needed, marks done entries)
+    for (int32_t k = 0; k < nt; ++k) {
+        if (tri_cell[k] < 0) continue;
+        const Vec2 c0 = center[k];
+        const Real r0 = radius[k];
+        int32_t cur = k;
+        for (;;) {
+            tri_cell[cur] = -1;
+            const int32_t nxt = items[cur];
+            if (nxt == k) {
+                center[cur] = c0;
+                radius[cur] = r0;
+                break;
+            }
+            center[cur] = center[nxt];
+            radius[cur] = radius[nxt];
+            cur = nxt;
+        }
     }
 
     // query every target boundary node against its 3x3 block
+    int32_t* __restrict hits = cs.query.data();
+    const BodyId* sub_body = cm.sub_body.data();
+    CandWriter w(cs);
     for (NodeId j : cm.boundary_nodes) {
         const BodyId bj = m.node_body[j];
         const Vec2 xj = x[j];
         const Real fx = std::floor((xj.x - lo.x) * inv), fy = std::floor((xj.y - lo.y) * inv);
         if (!(fx >= -1 && fy >= -1 && fx <= nx && fy <= ny)) continue;  // also NaN
         const int32_t ix = static_cast<int32_t>(fx), iy = static_cast<int32_t>(fy);
-        cs.query.clear();
+        const int32_t cx0 = std::max(0, ix - 1), cx1 = std::min(nx - 1, ix + 1);
+        int32_t n = 0;
         for (int32_t cy = std::max(0, iy - 1); cy <= std::min(ny - 1, iy + 1); ++cy) {
-            for (int32_t cx = std::max(0, ix - 1); cx <= std::min(nx - 1, ix + 1); ++cx) {
-                const size_t c = static_cast<size_t>(cy * nx + cx);
-                for (int32_t k = cs.cell_start[c]; k < cs.cell_start[c + 1]; ++k) {
-                    const int32_t t = cs.cell_items[static_cast<size_t>(k)];
-                    const Real reach = cs.tri_radius[t] + b;
-                    if (norm2(xj - cs.tri_center[t]) >= reach * reach) continue;
-                    if (!is_contactor_for(cm, cm.sub_body[t], bj)) continue;
-                    cs.query.push_back(t);
-                }
+            const int32_t k1 = start[cy * nx + cx1 + 1];
+            for (int32_t k = start[cy * nx + cx0]; k < k1; ++k) {
+                const Real dx = xj.x - center[k].x, dy = xj.y - center[k].y;
+                const Real reach = radius[k] + b;
+                // branch-free append: the slot is overwritten unless the circle is hit
+                hits[n] = items[k];
+                n += dx * dx + dy * dy < reach * reach ? 1 : 0;
             }
         }
-        if (!cs.query.empty()) emit(cm, j, cs);
+        // role rule (rarely rejects: same body or fixed pairs), keeping the order
+        int32_t kept = 0;
+        for (int32_t k = 0; k < n; ++k) {
+            if (is_contactor_for(cm, sub_body[hits[k]], bj)) hits[kept++] = hits[k];
+        }
+        if (kept > 0) emit(cm, j, hits, kept, w);
     }
-    cs.cand_begin.push_back(static_cast<int32_t>(cs.cand_tri.size()));
+    w.finish();
 }
 
 void find_candidates_brute_force(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs) {
     const ContactModel& cm = m.contact;
-    clear_candidates(cs);
-    bounding_circles(m, x, xv, cs);
+    Vec2 lo, hi;
+    bounding_circles(m, x, xv, cs, lo, hi);
+    CandWriter w(cs);
     for (NodeId j : cm.boundary_nodes) {
         cs.query.clear();
         for (int32_t t = 0; t < cm.num_sub_tris(); ++t) {
@@ -142,9 +250,11 @@ void find_candidates_brute_force(const Model& m, const Vec2* x, const Vec2* xv, 
             if (!is_contactor_for(cm, cm.sub_body[t], m.node_body[j])) continue;
             cs.query.push_back(t);
         }
-        if (!cs.query.empty()) emit(cm, j, cs);
+        if (!cs.query.empty()) {
+            emit(cm, j, cs.query.data(), static_cast<int32_t>(cs.query.size()), w);
+        }
     }
-    cs.cand_begin.push_back(static_cast<int32_t>(cs.cand_tri.size()));
+    w.finish();
 }
 
 }  // namespace fdem
