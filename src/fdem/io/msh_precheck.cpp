@@ -84,7 +84,9 @@ public:
         std::string s;
         size_t at = 0;
         while (next_section(s, at)) {
-            const std::string name = s.substr(1);
+            // Gmsh handles the line as a C string (&str[1]): it ends at a NUL byte
+            std::string name = s.substr(1);
+            name.resize(std::min(name.size(), name.find('\0')));
             bool go_on = true;
             if (starts_with(name, "MeshFormat")) {
                 go_on = format(at);
@@ -104,6 +106,8 @@ public:
                              : starts_with(name, "ELM") || starts_with(name, "Elements")) {
                 go_on =
                     msh4_ ? (binary_ ? elements4_binary(at) : elements4_ascii(at)) : elements2(at);
+            } else if (starts_with(name, "PhysicalNames")) {
+                go_on = physical_names(at);
             } else if (msh4_ && binary_ && starts_with(name, "Entities")) {
                 go_on = entities4_binary(at);
             }
@@ -125,6 +129,9 @@ private:
     bool binary_ = false;
     bool swap_ = false;
     bool msh4_ = false;
+    double version_ = 0;
+    std::vector<int32_t> node_ids_;  ///< MSH 2: ids of the last $Nodes section
+    bool ids_sorted_ = false;
 
     size_t left() const { return d_.size() - pos_; }
 
@@ -282,6 +289,7 @@ private:
                                       size));
         }
         format_seen_ = true;
+        version_ = version;
         msh4_ = !v2;
         binary_ = type == 1;
         if (binary_) {
@@ -295,6 +303,30 @@ private:
                                               pos_ - 4, one));
                 }
             }
+        }
+        return true;
+    }
+
+    /// $PhysicalNames (ASCII in every format): "count", then lines "dim tag \"name\"" (MSH 2.0:
+    /// no dim). Gmsh 4.8's MSH 4 reader indexes an array of 4 iterators by dim: a dimension
+    /// outside 0..3 crashed it (SEGV in GModel::setPhysicalName, found by fuzzing).
+    bool physical_names(size_t at) {
+        (void)at;
+        long long n = 0;
+        if (!line_count(n)) return false;
+        const bool has_dim = msh4_ || version_ > 2.0;
+        std::string rest;
+        for (long long k = 0; k < n; ++k) {
+            const size_t entry_at = skip_ws();
+            long long dim = 0, tag = 0;
+            if (has_dim && !scan_int(dim)) return false;
+            if (!scan_int(tag)) return false;
+            if (has_dim && (dim < 0 || dim > 3)) {
+                fail(entry_at, fmt::format("$PhysicalNames entry {} (tag {}) has dimension {}; "
+                                           "expected 0 to 3",
+                                           k + 1, tag, dim));
+            }
+            if (!fgets(rest, 256, false)) return false;
         }
         return true;
     }
@@ -317,7 +349,24 @@ private:
         if (n < 0 || n > INT_MAX) {
             fail(count_at, fmt::format("the $Nodes count must be 0 to {}, got {}", INT_MAX, n));
         }
-        if (!binary_) return true;  // Gmsh reads ASCII nodes one by one
+        node_ids_.clear();  // Gmsh keeps the nodes of the last $Nodes section
+        ids_sorted_ = false;
+        if (!binary_) {
+            // fscanf("%d %lf %lf %lf") per node
+            for (long long k = 0; k < n; ++k) {
+                const size_t id_at = skip_ws();
+                long long id = 0;
+                if (!scan_int(id)) return false;
+                if (id < INT_MIN || id > INT_MAX) {
+                    fail(id_at, fmt::format("$Nodes: node id {} is beyond the int range", id));
+                }
+                node_ids_.push_back(static_cast<int32_t>(id));
+                for (int c = 0; c < 3; ++c) {
+                    if (!scan_double()) return false;
+                }
+            }
+            return true;
+        }
         constexpr uint64_t rec = 4 + 3 * 8;
         if (static_cast<uint64_t>(n) > left() / rec) {
             fail(at, fmt::format("$Nodes (binary) at byte {} declares {} nodes of {} bytes "
@@ -325,8 +374,25 @@ private:
                                  "the file",
                                  at, n, rec, static_cast<uint64_t>(n) * rec, left()));
         }
-        pos_ += static_cast<size_t>(n) * rec;
+        for (long long k = 0; k < n; ++k) {
+            int32_t id = 0;
+            read_i32(id);
+            node_ids_.push_back(id);
+            pos_ += 3 * 8;
+        }
         return true;
+    }
+
+    /// Whether the last MSH 2 $Nodes section defines node id. Gmsh 4.8 checks an element's node
+    /// against its dense node vector with an off-by-one bound: node numVertices + 1 of a 1-based
+    /// numbering passed and crashed it (SEGV in _associateEntityWithMeshVertices, fuzzing).
+    bool node_defined(int64_t id) {
+        if (!ids_sorted_) {
+            std::sort(node_ids_.begin(), node_ids_.end());
+            ids_sorted_ = true;
+        }
+        return id >= INT_MIN && id <= INT_MAX &&
+               std::binary_search(node_ids_.begin(), node_ids_.end(), static_cast<int32_t>(id));
     }
 
     /// MSH 2 $Elements: "count", then lines "id type ntags tags... nodes..." (ASCII) or blocks
@@ -380,6 +446,14 @@ private:
                                 "node ids), the line has {}",
                                 v[0], v[1], v[2], want, nn, v.size()));
             }
+            for (size_t k = want - static_cast<size_t>(nn); k < want; ++k) {
+                if (!node_defined(v[k])) {
+                    fail_line(
+                        fmt::format("element {} references node {}, which $Nodes does not "
+                                    "define",
+                                    v[0], v[k]));
+                }
+            }
         }
         return true;
     }
@@ -407,7 +481,21 @@ private:
                                      "only {} bytes are left in the file",
                                      where, n, rec, rec * static_cast<uint64_t>(n), left()));
             }
-            pos_ += static_cast<size_t>(rec * static_cast<uint64_t>(n));
+            for (int32_t e = 0; e < n; ++e) {
+                const size_t rec_at = pos_;
+                int32_t id = 0;
+                read_i32(id);
+                pos_ += 4 * static_cast<size_t>(ntags);
+                for (int k = 0; k < nn; ++k) {
+                    int32_t node = 0;
+                    read_i32(node);
+                    if (!node_defined(node)) {
+                        fail(at, fmt::format("{}: element {} (record at byte {}) references node "
+                                             "{}, which $Nodes does not define",
+                                             where, id, rec_at, node));
+                    }
+                }
+            }
             done += n;
         }
         return true;

@@ -5,7 +5,11 @@
 //   - allocate tens of GB (binary MSH 2 element block header with a negative tag count; MSH 4.1
 //     node/element totals, block sizes, entity physical/bounding counts) before reading the data;
 //   - write past its node and element caches when the blocks hold more than the header's total;
-//   - crash (SEGV in getMeshVertexByTag(int)) on an MSH 4.1 node tag beyond the int range.
+//   - crash (SEGV in getMeshVertexByTag(int)) on an MSH 4.1 node tag beyond the int range;
+//   - crash (SEGV in GModel::setPhysicalName) on an MSH 4.1 $PhysicalNames dimension beyond 3
+//     (fuzzing, tests/fuzz/crashes/mesh/crash-776e4e7...);
+//   - crash (SEGV in _associateEntityWithMeshVertices) on an MSH 2 element whose node is one
+//     beyond the last of a dense 1-based numbering (an off-by-one bound check; fuzzing).
 // The walker below reads the file the way Gmsh does (sections found with fgets(256) lines and
 // matched by prefix, ASCII values with scanf semantics, binary blocks with fread) and rejects any
 // such value before Gmsh sees it. It does not validate what Gmsh itself reports cleanly (an
@@ -27,6 +31,8 @@ namespace fdem::io {
 ///    the exact record size for binary data), a negative count, blocks holding more entries than
 ///    their section header's total (or fewer);
 ///  - an unknown element type, a node or element tag outside 1..2147483647 (MSH 4.1);
+///  - a $PhysicalNames dimension outside 0..3;
+///  - an MSH 2 element node that the last $Nodes section does not define;
 ///  - in ASCII MSH 2, an $Elements line whose field count does not match its type.
 /// A file without any section (e.g. empty) passes: Gmsh reads an empty model from it.
 void precheck_msh(const std::string& path);

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "fdem/error.hpp"
@@ -158,6 +159,32 @@ TEST(MshPrecheck, BinaryMsh22NodeCountLargerThanTheFile) {
                            std::to_string(left) + " bytes are left in the file"));
 }
 
+// Fuzz finding (tests/fuzz/crashes/mesh/crash-9fc0a50...): $Nodes says 11 nodes (ids 1..11),
+// a triangle uses node 12; Gmsh 4.8's dense-vector bound check let id 12 through and crashed
+// (SEGV in GModel::_associateEntityWithMeshVertices). Binary and ASCII.
+TEST(MshPrecheck, FuzzFindingMsh22ElementNodeOneBeyondTheLast) {
+    std::string bytes = kHead22 + nodes22();
+    const std::string head = bytes + "$Elements\n1\n";
+    bytes += "$Elements\n1\n" + i32(2) + i32(1) + i32(2);
+    for (int32_t v : {5, 1, 1, 1, 2, 4})
+        bytes += i32(v);
+    bytes += "\n$EndElements\n";
+    const std::string path = write_temp("node4.msh", bytes);
+    EXPECT_THAT(mesh_error(path),
+                StartsWith(prefix(path, 9) + "$Elements (binary) block at byte " +
+                           std::to_string(head.size()) +
+                           " (type 2, count 1, tags 2): element 5 (record at byte " +
+                           std::to_string(head.size() + 12) +
+                           ") references node 4, which $Nodes does not define"));
+    const std::string ascii =
+        write_temp("node4_ascii.msh",
+                   "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n"
+                   "3 0 1 0\n$EndNodes\n$Elements\n1\n5 2 2 1 1 1 2 4\n$EndElements\n");
+    EXPECT_EQ(mesh_error(ascii), prefix(ascii, 12) +
+                                     "element 5 references node 4, which $Nodes does not define"
+                                     "\n 12 | 5 2 2 1 1 1 2 4");
+}
+
 TEST(MshPrecheck, BinaryByteOrderMarkMustBeOne) {
     const std::string path =
         write_temp("bom.msh", "$MeshFormat\n2.2 1 8\n" + i32(7) + "\n$EndMeshFormat\n" + nodes22());
@@ -215,6 +242,55 @@ TEST(MshPrecheck, SectionsFdemDoesNotReadAreRefused) {
     const std::string part = write_temp(
         "part.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PartitionedEntities\n2\n0\n");
     EXPECT_THAT(mesh_error(part), HasSubstr("section '$PartitionedEntities' is not supported"));
+}
+
+// Fuzz finding (tests/fuzz/crashes/mesh/crash-776e4e7...): "$PhysicalNames" entry "5 7 \"origin\""
+// of an MSH 4.1 file; Gmsh 4.8 indexed its 4 per-dimension iterators with 5 (SEGV).
+TEST(MshPrecheck, FuzzFindingPhysicalNameDimensionBeyond3) {
+    const std::string path =
+        write_temp("physdim.msh",
+                   "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 1 \"block\"\n"
+                   "5 7 \"origin\"\n$EndPhysicalNames\n");
+    EXPECT_EQ(mesh_error(path), prefix(path, 7) +
+                                    "$PhysicalNames entry 2 (tag 7) has dimension 5; expected 0 "
+                                    "to 3\n 7 | 5 7 \"origin\"");
+    const std::string v22 =
+        write_temp("physdim22.msh",
+                   "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n-1 7 \"origin\"\n");
+    EXPECT_THAT(mesh_error(v22),
+                StartsWith(prefix(v22, 6) + "$PhysicalNames entry 1 (tag 7) has dimension -1; "
+                                            "expected 0 to 3"));
+}
+
+/// A copy of a committed fuzz finding with a .msh name (read_mesh wants the extension).
+std::string finding(const std::string& name) {
+    std::ifstream in(std::string(FDEM_SOURCE_DIR) + "/tests/fuzz/crashes/mesh/" + name,
+                     std::ios::binary);
+    EXPECT_TRUE(in.good()) << name;
+    return write_temp(name + ".msh", std::string((std::istreambuf_iterator<char>(in)),
+                                                 std::istreambuf_iterator<char>()));
+}
+
+// The committed findings themselves, each refused before Gmsh reads it (the replay test
+// fuzz.replay_mesh runs them through read_mesh too). crash-95d6050: a section line "$Physic"
+// followed by binary bytes; Gmsh takes the name up to the first NUL ("Physic"), skips to
+// "$EndPhysicalNames" and then reads a binary $Entities whose curve 4 declares 2^41 bounding
+// entities: operator new(0x80000000000) (8 TiB, 4 bytes each).
+TEST(MshPrecheck, CommittedFuzzFindingsAreRefused) {
+    EXPECT_THAT(mesh_error(finding("crash-776e4e71104026cfad9dd2bccec8ce6ddadfa2f2")),
+                HasSubstr(":6: error: malformed mesh file '"));
+    EXPECT_THAT(mesh_error(finding("crash-776e4e71104026cfad9dd2bccec8ce6ddadfa2f2")),
+                HasSubstr("': $PhysicalNames entry 1 (tag 7) has dimension 5; expected 0 to 3"));
+    EXPECT_THAT(mesh_error(finding("crash-9fc0a503036c9a8f1ab48b2f88338cb780ec264a")),
+                HasSubstr("references node 12, which $Nodes does not define"));
+    const std::string w = mesh_error(finding("crash-95d6050c31b8d2c8533057ef228ba7ac108ffa99"));
+    EXPECT_THAT(w, HasSubstr(":20: error: malformed mesh file '"));
+    EXPECT_THAT(w, HasSubstr("': $Entities (binary): entity 4 of dimension 1 at byte 899 declares "
+                             "2199023255552 bounding-entity tags (4 bytes each); only 606 bytes "
+                             "are left in the file"));
+    EXPECT_THAT(mesh_error(finding("crash-d605729d127815367c52284a02eeb6f875030f04")),
+                HasSubstr("element 6 of type 9 with 2 tags needs 11 fields (6 node ids), the "
+                          "line has 7"));
 }
 
 // ---- ASCII MSH 4.1 ----------------------------------------------------------------------------
