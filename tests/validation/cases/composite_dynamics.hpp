@@ -24,11 +24,16 @@ inline BlockBuilder composite_block_builder() {
     };
 }
 
+/// Both modes use the spec's composite resolution, 10 x 10 composites (spec §5: "block 20 x 20
+/// squares = 800 CST or 10 x 10 composite"); the reduced one only drops speeds. At 5 x 5
+/// composites (the nodes of the quick CST block) the rebound is 9.27 m/s, -7.3 %, outside T13's
+/// 5 % (NOTES.md): five elements across are too coarse for the composite's wave propagation.
 struct CompositeDynamicsOptions {
-    int cells = 10;  ///< node spacing h = 1 / cells (composite elements of size 2h)
+    int cells = 20;  ///< node spacing h = 1 / cells (composite elements of size 2h)
     std::vector<double> speeds{2, 4};
+    bool energy_order = false;  ///< the T13 dt-halving fit (3 runs costing 14x the base run)
     static CompositeDynamicsOptions quick() { return {}; }
-    static CompositeDynamicsOptions full() { return {20, {2, 4, 6, 8}}; }
+    static CompositeDynamicsOptions full() { return {20, {2, 4, 6, 8}, true}; }
 };
 
 inline std::vector<Check> composite_dynamics_suite(const CompositeDynamicsOptions& o,
@@ -46,23 +51,27 @@ inline std::vector<Check> composite_dynamics_suite(const CompositeDynamicsOption
         k.name += std::string(" (") + tag + ")";
         c.push_back(k);
     }
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    const double fr[4] = {0.2, 0.1, 0.05, 0.025};
-    for (int k = 0; k < 4; ++k) {
-        BlockImpactOptions b = bo;
-        b.dt_fraction = fr[k];
-        const double y =
-            k == 0 ? std::log2(r.max_energy_error)
-                   : std::log2(run_block_impact(b, make_block_impact(b, comp)).max_energy_error);
-        sx += k;
-        sy += y;
-        sxx += k * k;
-        sxy += k * y;
+    if (o.energy_order) {
+        double sx = 0, sy = 0, sxx = 0, sxy = 0;
+        const double fr[4] = {0.2, 0.1, 0.05, 0.025};
+        for (int k = 0; k < 4; ++k) {
+            BlockImpactOptions b = bo;
+            b.dt_fraction = fr[k];
+            const double y =
+                k == 0
+                    ? std::log2(r.max_energy_error)
+                    : std::log2(run_block_impact(b, make_block_impact(b, comp)).max_energy_error);
+            sx += k;
+            sy += y;
+            sxx += k * k;
+            sxy += k * y;
+        }
+        c.push_back(check(
+            "T13",
+            std::string("order of the energy error (fit over 3 halvings of dt) (") + tag + ")",
+            -(4 * sxy - sx * sy) / (4 * sxx - sx * sx), Rel::AtLeast, 1.5, 0, "",
+            "as for the CST block: central differences are 2nd order (spec T13)"));
     }
-    c.push_back(check(
-        "T13", std::string("order of the energy error (fit over 3 halvings of dt) (") + tag + ")",
-        -(4 * sxy - sx * sy) / (4 * sxx - sx * sx), Rel::AtLeast, 1.5, 0, "",
-        "as for the CST block: central differences are 2nd order (spec T13)"));
     if (!out_dir.empty()) r.series.write(out_dir + "/composite_block_impact.csv");
     // T16: sliding block, free vertical motion, block damping xi = 1 as the CST runs (NOTES.md)
     SlidingOptions so = SlidingOptions::quick();
