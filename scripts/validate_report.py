@@ -330,8 +330,8 @@ def fig_composite(data, docs):
 
 
 def fig_composite_fields(data, docs):
-    """Paper Figs. 15-18: one composite element and a diamond of two, options (b) and (a)."""
-    shapes = [s for s in ["triangle", "diamond"]
+    """Paper Figs. 15-19: one composite element, a diamond of two, a rectangle of four; options (b), (a)."""
+    shapes = [s for s in ["triangle", "diamond", "rectangle"]
               if os.path.exists(os.path.join(data, f"field_composite_{s}_fan.csv"))]
     if not shapes:
         return None
@@ -394,7 +394,7 @@ def main():
             ("Sliding block, vertical motion fixed, two-way, mass scaling, block on the platform's node grid (reported)",
              fig_slide(data, docs, "fixed_two_way_mass_scaling_aligned")),
             ("Distance fields: smooth vs legacy potentials (paper Figs. 2, 15-22)", fig_fields(data, docs)),
-            ("Distance fields of the 6-node composite element: options (b) fan and (a) split of paper §2.4 (paper Figs. 15-18)",
+            ("Distance fields of the 6-node composite element: options (b) fan and (a) split of paper §2.4 (paper Figs. 15-19)",
              fig_composite_fields(data, docs)),
             ("Hertz line contact: disk on a rigid plane (spec §6.1, T18)", fig_hertz(data, docs)),
             ("Sensitivity: penalty, time step and mesh size (spec T20; centred on h = 0.1 m in both modes)",

@@ -1,9 +1,9 @@
-// Distance-field pictures of the 6-node composite element (paper Figs. 15-18, issue #7): one
-// composite element and a diamond of two composite elements, each with both contact options of
+// Distance-field pictures of the 6-node composite element (paper Figs. 15-19, issue #7): one
+// composite element, a diamond of two and a rectangle of four, each with both contact options of
 // paper §2.4 (docs/theory.md §6.1.1): "fan" = option (b), "split" = option (a). The smooth field d
 // (eqs. 1-4) is sampled on a grid next to the exact distance to the boundary and written as CSV
-// for scripts/validate_report.py. Checks: option (b) is exact in both shapes (spec §4.4 "When
-// is the interpolated field exact?"); the option (a) error is reported.
+// for scripts/validate_report.py. Checks: option (b) is exact for all three (spec §4.4 "When is
+// the interpolated field exact?"); the option (a) errors are reported.
 #pragma once
 
 #include <limits>
@@ -36,6 +36,14 @@ inline std::vector<CompositeFieldCase> composite_field_cases() {
         c.push_back({"triangle", {{0, 0}, {1, 0}, {0.3, 0.8}}, {{0, 1, 2}}, o});
         // cut along the short diagonal: two elements, each with two boundary edges (case 1)
         c.push_back({"diamond", {{1, 0}, {0, 0.6}, {-1, 0}, {0, -0.6}}, {{0, 1, 3}, {1, 2, 3}}, o});
+        // paper Fig. 19: a 2 x 1 rectangle of four structured composites; (0,4,3) and (1,2,5)
+        // have two boundary edges (case 1). With the fans around the diagonals' midpoints
+        // (0.5, 0.5) and (1.5, 0.5), which are on the medial axis, every contact sub-triangle lies
+        // in one nearest-side region, so option (b) is exact here too
+        c.push_back({"rectangle",
+                     {{0, 0}, {1, 0}, {2, 0}, {0, 1}, {1, 1}, {2, 1}},
+                     {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}},
+                     o});
     }
     return c;
 }
@@ -126,14 +134,17 @@ inline std::vector<Check> composite_field_maps_suite(const std::string& out_dir,
             r.mesh.write(base + "_mesh.csv");
             r.sub.write(base + "_sub.csv");
         }
-        const std::string what = fc.shape +
-                                 (fc.shape == "triangle" ? " (one element" : " (two elements") +
-                                 (fc.exact() ? ", option (b) fan)" : ", option (a) split)");
+        const std::string count = fc.shape == "triangle"  ? " (one element"
+                                  : fc.shape == "diamond" ? " (two elements"
+                                                          : " (four elements";
+        const std::string what =
+            fc.shape + count +
+            (fc.option == CompositeSpecialCase::Fan ? ", option (b) fan)" : ", option (a) split)");
         c.push_back(check("T4", "composite element: max |d - exact distance| / size, " + what,
                           r.max_error / r.size, fc.exact() ? Rel::AtMost : Rel::Report,
                           fc.exact() ? 1e-12 : 0, 0, "",
-                          fc.exact() ? "theory §6.1.1: incenter / centre fan is exact; 1e-12 "
-                                       "round-off"
+                          fc.exact() ? "theory §6.1.1: every fan triangle is a nearest-side "
+                                       "region, exact; 1e-12 round-off"
                                      : "paper Figs. 15/17 option (a): not exact (reported)"));
     }
     return c;
