@@ -82,6 +82,9 @@ struct ContactState {
     // ---- penetration diagnostics (spec §4.6): the engine may warn or fail on them ---------
     int32_t deep_penetrations = 0;        ///< pairs this step with d / layer > deep_ratio_limit
     int32_t lost_inside = 0;              ///< pairs lost this step with the node inside the body
+    NodeId lost_node = kNone;             ///< deepest of those target nodes this step
+    BodyId lost_body = kNone;             ///< the body lost_node went into
+    Real lost_depth_ratio = 0;            ///< d / layer of lost_node when it was last in contact
     Real max_depth_ratio = 0;             ///< largest d / layer this step [-]
     int64_t total_deep_penetrations = 0;  ///< running sums of the two counters above
     int64_t total_lost_inside = 0;

@@ -54,7 +54,7 @@ add_test(NAME cli.energy_drift_exits_1
 add_test(NAME cli.penetration_exits_1
          COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=1
                  "-DARGS=run;${cli_dir}/penetration.toml;--out;${cli_out}/penetration;--quiet"
-                 "-DREGEX=step [0-9]+ \\(t = [0-9.e+-]+ s\\): contact: [0-9]+ target node\\(s\\) passed through the contact layer into the body they touched \\(deepest d / layer = [0-9.e+-]+\\); the contact force is lost there; reduce dt \\(now [0-9.e+-]+ s, stable limit [0-9.e+-]+ s\\) or increase the contact penalty"
+                 "-DREGEX=step [0-9]+ \\(t = [0-9.e+-]+ s\\): contact: [0-9]+ target node\\(s\\) passed through the contact layer into the body they touched \\(deepest d / layer = [0-9.e+-]+\\); node [0-9]+ \\(body 0 .base., at \\([0-9.e+-]+, [0-9.e+-]+\\) m, d / layer = [0-9.e+-]+ when last in contact\\) is inside body 1 .block.; the contact force is lost there; reduce dt \\(now [0-9.e+-]+ s, stable limit [0-9.e+-]+ s\\) or increase the contact penalty"
                  -P ${cli_dir}/expect_exit.cmake)
 set_tests_properties(cli.energy_drift_exits_1 cli.penetration_exits_1 PROPERTIES LABELS input)
 

@@ -219,6 +219,9 @@ void add_contact_forces(const Model& m, State& s) {
     ContactState& cs = s.contact;
     cs.deep_penetrations = 0;
     cs.lost_inside = 0;
+    cs.lost_node = kNone;
+    cs.lost_body = kNone;
+    cs.lost_depth_ratio = 0;
     cs.max_depth_ratio = 0;
     if (cm.algorithm == ContactAlgorithm::None || cm.num_sub_tris() == 0) {
         s.energy.contact = 0;
@@ -287,6 +290,12 @@ void add_contact_forces(const Model& m, State& s) {
         if (a.h.depth_ratio > kLostCheckRatio && inside_body(cm, a.body, x, x[a.node])) {
             lost = true;  // left the boundary layer inwards: penetration too deep (spec §4.6)
             ++cs.lost_inside;
+            if (cs.lost_node < 0 || a.h.depth_ratio > cs.lost_depth_ratio) {
+                // the deepest one is named in the failure message (integrate/run_checks.cpp)
+                cs.lost_node = a.node;
+                cs.lost_body = a.body;
+                cs.lost_depth_ratio = a.h.depth_ratio;
+            }
         }
         dissipated += release_energy(p, a.h, scale, lost);
     };

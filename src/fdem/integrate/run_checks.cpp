@@ -14,18 +14,29 @@ namespace {
 constexpr int64_t kEnergyCheckFirstStep = 16;  ///< first step at which the energy drift counts
 }  // namespace
 
-std::string check_run(const Model& /*m*/, const State& s, const RunSettings& run,
-                      EnergyMonitor& mon) {
+std::string check_run(const Model& m, const State& s, const RunSettings& run, EnergyMonitor& mon) {
     const CheckSettings& c = run.checks;
     std::string warning;
 
     // penetration beyond the contact layer (spec §4.6 depth limit)
     const ContactState& cs = s.contact;
     if (c.penetration != PenetrationCheck::Off && cs.lost_inside > 0) {
-        const std::string what = fmt::format(
+        std::string what = fmt::format(
             "{} target node(s) passed through the contact layer into the body they touched "
-            "(deepest d / layer = {:.3g}); the contact force is lost there",
+            "(deepest d / layer = {:.3g})",
             cs.lost_inside, cs.max_depth_ratio);
+        // the deepest of them (contact/contact.cpp records it), with body names for the user
+        const NodeId j = cs.lost_node;
+        const BodyId into = cs.lost_body;
+        if (j >= 0 && j < m.num_nodes() && into >= 0 && into < m.num_bodies()) {
+            const BodyId bj = m.node_body[j];
+            what += fmt::format(
+                "; node {} (body {} \"{}\", at ({:.6g}, {:.6g}) m, d / layer = {:.3g} when last "
+                "in contact) is inside body {} \"{}\"",
+                j, bj, m.bodies[bj].name, s.x[j].x, s.x[j].y, cs.lost_depth_ratio, into,
+                m.bodies[into].name);
+        }
+        what += "; the contact force is lost there";
         const std::string remedy = fmt::format(
             "reduce dt (now {:.3g} s, stable limit {:.3g} s) or increase the contact penalty "
             "([contact] penalty); set [checks] penetration = \"warn\" to continue anyway",

@@ -149,6 +149,8 @@ void put_state(Sink& o, const State& s) {
     put(o, c.active_contacts);
     put(o, c.deep_penetrations);
     put(o, c.lost_inside);
+    // lost_node, lost_body, lost_depth_ratio: reset and rewritten by every step before
+    // check_run reads them (not saved)
     put(o, c.max_depth_ratio);
     put(o, c.total_deep_penetrations);
     put(o, c.total_lost_inside);

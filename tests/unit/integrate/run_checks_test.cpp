@@ -72,6 +72,39 @@ TEST(RunChecks, PenetrationFailsWarnsOrIsIgnored) {
     EXPECT_EQ(check_run(m, s, run, mon), "");
 }
 
+// The deepest lost node (ContactState::lost_node, recorded by contact/contact.cpp) is named with
+// its body, position and the body it went into.
+TEST(RunChecks, PenetrationNamesTheDeepestLostNode) {
+    Model m;
+    m.materials.push_back(scenes::paper_material());
+    scenes::add_rectangle(m, 0, 0, 1, 1, 2, 2, 0, false, {}, false, "base");
+    scenes::add_rectangle(m, 0, 1, 1, 1, 2, 2, 0, false, {}, false, "block");
+    finalize_model(m);
+    State s = make_state(m, 1e-5);
+    s.step = 7;
+    s.time = 7e-5;
+    NodeId j = 0;
+    while (m.node_body[j] != 1)
+        ++j;
+    s.x[j] = {0.25, 0.75};
+    s.contact.lost_inside = 1;
+    s.contact.max_depth_ratio = 0.9;
+    s.contact.lost_node = j;
+    s.contact.lost_body = 0;
+    s.contact.lost_depth_ratio = 0.9;
+    RunSettings run;
+    run.stable_dt = 3e-5;
+    EnergyMonitor mon;
+    EXPECT_EQ(simulation_error([&] { check_run(m, s, run, mon); }),
+              "step 7 (t = 7e-05 s): contact: 1 target node(s) passed through the contact layer "
+              "into the body they touched (deepest d / layer = 0.9); node " +
+                  std::to_string(j) +
+                  " (body 1 \"block\", at (0.25, 0.75) m, d / layer = 0.9 when last in contact) "
+                  "is inside body 0 \"base\"; the contact force is lost there; reduce dt (now "
+                  "1e-05 s, stable limit 3e-05 s) or increase the contact penalty ([contact] "
+                  "penalty); set [checks] penetration = \"warn\" to continue anyway");
+}
+
 // E_0 is the total of the first call; the scale is the largest of kinetic + strain + contact,
 // |gravity work| and |external work| seen so far.
 TEST(RunChecks, EnergyDriftBeyondToleranceStops) {
