@@ -18,6 +18,14 @@ namespace fdem {
 void add_composite_forces(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin,
                           TriId end, bool with_energy, ElementPass& out);
 
+/// True if triangle t is a sub-triangle of a Composite6 body (false for hand-built models whose
+/// triangles name no existing body, as some output tests make).
+inline bool is_composite_tri(const Model& m, TriId t) {
+    const BodyId b = m.tri_body[static_cast<size_t>(t)];
+    return b >= 0 && b < m.num_bodies() &&
+           m.bodies[static_cast<size_t>(b)].element == ElementKind::Composite6;
+}
+
 /// Mean dilatation Jbar = A_c / A_c0 of the composite that owns sub-triangle t (theory eq. 3.6).
 Real composite_jbar(const Model& m, const Vec2* x, TriId t);
 

@@ -37,9 +37,8 @@ TriFields tri_fields(const Model& m, const State& s, TriId t) {
     const Mat2 F = deformation_gradient(m, s.x.data(), t);
     const Material& mat = m.materials[static_cast<size_t>(m.tri_material[t])];
     TriFields out;
-    out.stress = m.bodies[static_cast<size_t>(m.tri_body[t])].element == ElementKind::Composite6
-                     ? composite_stress(m, s.x.data(), t)
-                     : cauchy_stress(mat, F);
+    out.stress =
+        is_composite_tri(m, t) ? composite_stress(m, s.x.data(), t) : cauchy_stress(mat, F);
     out.strain = green_lagrange(F);
     const Mat2& sg = out.stress;
     // von Mises of the in-plane tensor with sigma_zz = 0 (plane-stress form)
