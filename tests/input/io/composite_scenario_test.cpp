@@ -3,10 +3,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <optional>
 #include <string>
 
 #include "fdem/error.hpp"
+#include "fdem/mesh.hpp"
 #include "fdem/scenario.hpp"
 
 namespace fdem {
@@ -107,6 +110,82 @@ TEST(CompositeScenario, ElementMustBeAString) {
     const std::string w = what_of(scenario("mesh = \"square_22_ascii.msh\"", "element = 6"));
     EXPECT_THAT(w, StartsWith("bad.toml:15:11: error: body \"block\": element must be one of "
                               "\"cst\", \"composite\", got a number 6"));
+}
+
+std::string mesh_error(const std::string& name, const std::string& text) {
+    const std::string path =
+        std::filesystem::path(::testing::TempDir() + "/" + name).lexically_normal().string();
+    std::ofstream(path) << text;
+    try {
+        read_mesh(path);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no InputError for " << name;
+    return {};
+}
+
+// unit square as one 3-node and one 6-node triangle in two elementary entities (MSH 2.2;
+// $Elements on line 16). Gmsh 4.8 itself drops elements of a second order from a shared
+// entity, so the two orders sit in entities 1 and 2.
+//   4 --7-- 3
+//   |     / |
+//   8   6   5      element 2: (1, 2, 3) as a 6-node triangle with mid nodes 9, 5, 6
+//   | /     |      element 1: (1, 3, 4) as a 3-node triangle
+//   1 --9-- 2
+constexpr const char* kMixedMsh = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+9
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 1 0.5 0
+6 0.5 0.5 0
+7 0.5 1 0
+8 0 0.5 0
+9 0.5 0 0
+$EndNodes
+$Elements
+2
+1 2 2 1 1 1 3 4
+2 9 2 1 2 1 2 3 9 5 6
+$EndElements
+)";
+
+TEST(CompositeMesh, MixedTriangleOrdersAreRejected) {
+    const std::string w = mesh_error("mixed_order.msh", kMixedMsh);
+    EXPECT_THAT(w, HasSubstr("mixed_order.msh:16: error: mesh file '"));
+    EXPECT_THAT(w, HasSubstr("mixes 3-node and 6-node triangles (type 2 and 9); a mesh must be "
+                             "entirely first or second order (gmsh -order 1 or -order 2)"));
+}
+
+TEST(CompositeMesh, FirstOrderLinesOnSecondOrderTrianglesAreRejected) {
+    // one 6-node triangle and a 2-node line on its bottom edge
+    const std::string text = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+6
+1 0 0 0
+2 1 0 0
+3 0 1 0
+4 0.5 0 0
+5 0.5 0.5 0
+6 0 0.5 0
+$EndNodes
+$Elements
+2
+1 1 2 2 1 1 2
+2 9 2 1 1 1 2 3 4 5 6
+$EndElements
+)";
+    const std::string w = mesh_error("line_order.msh", text);
+    EXPECT_THAT(w, HasSubstr("line_order.msh:13: error: mesh file '"));
+    EXPECT_THAT(w, HasSubstr("has 6-node triangles but 2-node lines (type 1); lines must have "
+                             "the order of the triangles (gmsh -order 2)"));
 }
 
 }  // namespace
