@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -120,6 +121,34 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
                                     "edge; straighten the edges or refine the mesh",
                                     t + 1, n[0] + 1, n[1] + 1, n[2] + 1, opt.name, k + 1, q[0] + 1,
                                     q[1] + 1, q[2] + 1, sa));
+                }
+            }
+        }
+    }
+
+    // a triangle inverted relative to a neighbour folds the mesh over itself (the reorientation
+    // above hides it): across every shared edge the two opposite corners must lie on opposite
+    // sides (for 6-node triangles the corners decide; their sub-triangles are checked above)
+    {
+        std::map<std::pair<int32_t, int32_t>, std::pair<int32_t, int32_t>> first_on_edge;
+        for (int32_t t : tri_ids) {
+            const auto& n = mesh.tris[static_cast<size_t>(t)];
+            for (int e = 0; e < 3; ++e) {
+                const int32_t a = n[e], b = n[(e + 1) % 3], c = n[(e + 2) % 3];
+                const auto [it, added] =
+                    first_on_edge.try_emplace({std::min(a, b), std::max(a, b)}, t, c);
+                if (added) continue;
+                const auto [u, d] = it->second;
+                const Vec2 pa = mesh.nodes[a], pb = mesh.nodes[b];
+                if (signed_area(pa, pb, mesh.nodes[c]) * signed_area(pa, pb, mesh.nodes[d]) > 0) {
+                    throw InputError(
+                        {mesh.file, 0, 0}, fmt::format("triangle {}", t + 1),
+                        fmt::format("triangles {} and {} of body \"{}\" overlap: they share the "
+                                    "edge of nodes {} and {} and lie on the same side of it, so "
+                                    "one of them is inverted (the mesh folds over itself); fix "
+                                    "the node positions or remesh (e.g. with gmsh)",
+                                    u + 1, t + 1, opt.name, std::min(a, b) + 1,
+                                    std::max(a, b) + 1));
                 }
             }
         }

@@ -90,6 +90,20 @@ TEST(RobustInputs, DuplicateNodesInOneBody) {
                           "Mesh;)"));
 }
 
+// Triangle 2 (nodes 2, 3, 4) lies on the same side of the shared edge 2-3 as triangle 1: it is
+// inverted relative to its neighbour and the mesh folds over itself (reorienting each triangle
+// counter-clockwise on its own would hide this).
+TEST(RobustInputs, InvertedTriangleFoldsTheMesh) {
+    const std::string mesh = write_temp(
+        "fold.msh", msh22({"1 0 0 0", "2 1 0 0", "3 0 1 0", "4 0.2 0.2 0"}, {"1 2 3", "2 3 4"}));
+    const std::string w = error_of(scenario(mesh));
+    EXPECT_THAT(w, ::testing::StartsWith(mesh + ": error: "));
+    EXPECT_THAT(w, HasSubstr("triangles 1 and 2 of body \"slab\" overlap: they share the edge of "
+                             "nodes 2 and 3 and lie on the same side of it, so one of them is "
+                             "inverted (the mesh folds over itself); fix the node positions or "
+                             "remesh (e.g. with gmsh)"));
+}
+
 // A body entry whose triangles form two pieces is allowed: each connected component becomes its
 // own body (docs/scenario.md [[body]]). Coincident nodes of different bodies are allowed too
 // (bodies touching at t = 0).
