@@ -446,12 +446,12 @@ private:
                                 "node ids), the line has {}",
                                 v[0], v[1], v[2], want, nn, v.size()));
             }
-            for (size_t k = want - static_cast<size_t>(nn); k < want; ++k) {
-                if (!node_defined(v[k])) {
+            for (size_t f = want - static_cast<size_t>(nn); f < want; ++f) {
+                if (!node_defined(v[f])) {
                     fail_line(
                         fmt::format("element {} references node {}, which $Nodes does not "
                                     "define",
-                                    v[0], v[k]));
+                                    v[0], v[f]));
                 }
             }
         }
