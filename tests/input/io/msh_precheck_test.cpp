@@ -3,6 +3,7 @@
 // line and what was expected, before Gmsh reads it. The offsets and sizes expected below are
 // counted from the way each file is put together here.
 #include <gmock/gmock.h>
+#include <gmsh.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "fdem/error.hpp"
 #include "fdem/mesh.hpp"
@@ -92,6 +94,50 @@ TEST(MshPrecheck, ValidBinaryMsh22StillLoads) {
     const MeshData mesh = read_mesh(path, 0);
     EXPECT_EQ(mesh.nodes.size(), 3u);
     EXPECT_EQ(mesh.tris.size(), 1u);
+}
+
+// No false alarm on what Gmsh itself writes: MSH 2.2 and 4.1, ASCII and binary, parametric nodes,
+// second order; each file gives the triangles Gmsh had in memory when it wrote it.
+TEST(MshPrecheck, GmshWrittenFilesOfEveryFlavourLoad) {
+    struct Flavour {
+        const char* name;
+        double version;
+        int binary, parametric, order;
+    };
+    const Flavour flavours[] = {{"22a", 2.2, 0, 0, 1},  {"22b", 2.2, 1, 0, 1},
+                                {"41a", 4.1, 0, 0, 1},  {"41b", 4.1, 1, 0, 1},
+                                {"41p", 4.1, 0, 1, 1},  {"41pb", 4.1, 1, 1, 1},
+                                {"22o2", 2.2, 1, 0, 2}, {"41o2", 4.1, 1, 0, 2}};
+    std::vector<std::size_t> triangles;  // per flavour, as Gmsh counts them
+    const char* args[] = {"test", "-v", "0"};
+    gmsh::initialize(3, const_cast<char**>(args), false);
+    gmsh::option::setNumber("General.Terminal", 0);
+    for (const Flavour& f : flavours) {
+        gmsh::clear();
+        gmsh::open(std::string(FDEM_TEST_DATA_DIR) + "/block_on_base.geo");
+        gmsh::option::setNumber("Mesh.MeshSizeMax", 0.1);
+        gmsh::option::setNumber("Mesh.ElementOrder", f.order);
+        gmsh::model::mesh::generate(2);
+        gmsh::option::setNumber("Mesh.MshFileVersion", f.version);
+        gmsh::option::setNumber("Mesh.Binary", f.binary);
+        gmsh::option::setNumber("Mesh.SaveParametric", f.parametric);
+        gmsh::write(::testing::TempDir() + "/precheck_gmsh_" + f.name + ".msh");
+        std::vector<std::size_t> tags, nodes;
+        gmsh::model::mesh::getElementsByType(f.order == 1 ? 2 : 9, tags, nodes);
+        triangles.push_back(tags.size());
+    }
+    gmsh::finalize();
+    for (size_t i = 0; i < std::size(flavours); ++i) {
+        const Flavour& f = flavours[i];
+        const std::string path = ::testing::TempDir() + "/precheck_gmsh_" + f.name + ".msh";
+        try {
+            const MeshData mesh = read_mesh(path, 0);
+            EXPECT_GT(triangles[i], 0u);
+            EXPECT_EQ(mesh.tris.size(), triangles[i]) << f.name;
+        } catch (const InputError& e) {
+            ADD_FAILURE() << f.name << ": " << e.what();
+        }
+    }
 }
 
 // The fuzz finding (tests/fuzz/crashes/mesh/oom-257a84a...): the 9th block header of $Elements
