@@ -127,57 +127,20 @@ void update_virtual_nodes(const Model& m, State& s) {
 
 namespace {
 
-// Narrow phase and law of candidate pair pr (spec §4.5-1 to -7): reads positions, velocities
-// and the previous history (looked up in cs.active, sorted by (node, body)); returns the located
-// sub-triangle, or -1 when the pair is not in contact, and writes out only in contact.
-// Independent of every other pair, so the pairs can be evaluated in any order and on any thread.
-//
-// Early reject (docs/performance.md): in the contact-heavy pack only ~0.3 % of the candidate
-// pairs touch, so the locate loop first tests the signs of the three edge functions
-// c_i = cross(p_{i+1} - x, p_{i+2} - x) (N_i = c_i / 2A, eq. 4) against the signed area without
-// a division; only a point within a margin of the triangle goes on to barycentric(), which
-// computes the same c_i, so the accepted triangle and N are bitwise those of the full test.
-int32_t evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const Vec2* v,
-                      const Vec2* xv, const Vec2* vv, Real dt, int32_t pr, PairResult& out) {
+// The rare part of evaluate_pair: field and law of a pair whose node lies in sub-triangle best
+// (vertices pb, barycentric coordinates N). Out of line, so that the locate loop that every pair
+// runs stays small (no FieldSample set-up per pair).
+[[gnu::noinline]] int32_t contact_at(const Model& m, const ContactState& cs, const Vec2* v,
+                                     const Vec2* vv, Real dt, NodeId j, BodyId c, int32_t best,
+                                     const Real N[3], const Vec2 pb[3], PairResult& out) {
     const ContactModel& cm = m.contact;
-    const NodeId j = cs.cand_node[pr];
-    const BodyId c = cs.cand_body[pr];
-
-    // locate x_j: the candidate sub-triangle with the largest min N_i >= -eps
-    const Vec2 xj = x[j];
-    int32_t best = -1;
-    Real best_min = -kLocateEps;
     FieldSample fs;
-    Vec2 pbest[3];
-    for (int32_t k = cs.cand_begin[pr]; k < cs.cand_begin[pr + 1]; ++k) {
-        const auto& q = cm.sub_tri[cs.cand_tri[k]];
-        const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
-        // N_i = c_i * (1 / a2) with |rounding| < 1e-15 relative, so any c_i beyond
-        // kRejectMargin |a2| on the outer side gives N_i < -kLocateEps: rejected either way
-        // (NaN and a2 == 0 fall through to barycentric(), which decides as before)
-        const Real a2 = cross(p[1] - p[0], p[2] - p[0]);
-        const Real c0 = cross(p[1] - xj, p[2] - xj), c1 = cross(p[2] - xj, p[0] - xj),
-                   c2 = cross(p[0] - xj, p[1] - xj);
-        const Real lim = kRejectMargin * std::abs(a2);
-        if (a2 > 0 ? std::min({c0, c1, c2}) < -lim : std::max({c0, c1, c2}) > lim) continue;
-        Real N[3];
-        if (!barycentric(p[0], p[1], p[2], xj, N)) continue;
-        const Real mn = std::min({N[0], N[1], N[2]});
-        if (mn >= best_min) {
-            best_min = mn;
-            best = cs.cand_tri[k];
-            fs.N[0] = N[0];
-            fs.N[1] = N[1];
-            fs.N[2] = N[2];
-            pbest[0] = p[0];
-            pbest[1] = p[1];
-            pbest[2] = p[2];
-        }
-    }
-    if (best < 0) return -1;
+    fs.N[0] = N[0];
+    fs.N[1] = N[1];
+    fs.N[2] = N[2];
     const auto& q = cm.sub_tri[best];
     const Real dist[3] = {cm.node_dist[q[0]], cm.node_dist[q[1]], cm.node_dist[q[2]]};
-    evaluate_field(cm, best, pbest, dist, fs);
+    evaluate_field(cm, best, pb, dist, fs);
     if (!(fs.d > 0)) return -1;
 
     // history of the pair: binary search in the previous active list (only pairs in contact
@@ -210,6 +173,56 @@ int32_t evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, con
     out.stored = r.stored;
     out.dissipated = r.dissipated;
     return best;
+}
+
+// Narrow phase and law of candidate pair pr (spec §4.5-1 to -7): reads positions, velocities
+// and the previous history (looked up in cs.active, sorted by (node, body)); returns the located
+// sub-triangle, or -1 when the pair is not in contact, and writes out only in contact.
+// Independent of every other pair, so the pairs can be evaluated in any order and on any thread.
+//
+// Early reject (docs/performance.md): in the contact-heavy pack only ~0.3 % of the candidate
+// pairs touch, so the locate loop first tests the signs of the three edge functions
+// c_i = cross(p_{i+1} - x, p_{i+2} - x) (N_i = c_i / 2A, eq. 4) against the signed area without
+// a division; only a point within a margin of the triangle goes on to barycentric(), which
+// computes the same c_i, so the accepted triangle and N are bitwise those of the full test.
+int32_t evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const Vec2* v,
+                      const Vec2* xv, const Vec2* vv, Real dt, int32_t pr, PairResult& out) {
+    const ContactModel& cm = m.contact;
+    const NodeId j = cs.cand_node[pr];
+
+    // locate x_j: the candidate sub-triangle with the largest min N_i >= -eps
+    const Vec2 xj = x[j];
+    int32_t best = -1;
+    Real best_min = -kLocateEps;
+    Real bN[3];
+    Vec2 pb[3];
+    for (int32_t k = cs.cand_begin[pr]; k < cs.cand_begin[pr + 1]; ++k) {
+        const auto& q = cm.sub_tri[cs.cand_tri[k]];
+        const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
+        // N_i = c_i * (1 / a2) with |rounding| < 1e-15 relative, so any c_i beyond
+        // kRejectMargin |a2| on the outer side gives N_i < -kLocateEps: rejected either way
+        // (NaN and a2 == 0 fall through to barycentric(), which decides as before)
+        const Real a2 = cross(p[1] - p[0], p[2] - p[0]);
+        const Real c0 = cross(p[1] - xj, p[2] - xj), c1 = cross(p[2] - xj, p[0] - xj),
+                   c2 = cross(p[0] - xj, p[1] - xj);
+        const Real lim = kRejectMargin * std::abs(a2);
+        if (a2 > 0 ? std::min({c0, c1, c2}) < -lim : std::max({c0, c1, c2}) > lim) continue;
+        Real N[3];
+        if (!barycentric(p[0], p[1], p[2], xj, N)) continue;
+        const Real mn = std::min({N[0], N[1], N[2]});
+        if (mn >= best_min) {
+            best_min = mn;
+            best = cs.cand_tri[k];
+            bN[0] = N[0];
+            bN[1] = N[1];
+            bN[2] = N[2];
+            pb[0] = p[0];
+            pb[1] = p[1];
+            pb[2] = p[2];
+        }
+    }
+    if (best < 0) return -1;
+    return contact_at(m, cs, v, vv, dt, j, cs.cand_body[pr], best, bN, pb, out);
 }
 
 }  // namespace
