@@ -324,6 +324,7 @@ uint64_t model_hash(const Model& m, Real dt) {
         put(h, b.group);
         put(h, b.material);
         put(h, b.fixed);
+        put(h, b.element);
         put(h, b.node_begin);
         put(h, b.node_end);
         put(h, b.tri_begin);
@@ -370,6 +371,8 @@ uint64_t model_hash(const Model& m, Real dt) {
     put(h, c.two_way);
     put(h, c.m_bar);
     put(h, c.deep_ratio_limit);
+    put(h, c.scaling);
+    put(h, c.node_scale);
     put(h, c.node_dist);
     put(h, c.virt_parent);
     put(h, c.virt_weight);

@@ -17,6 +17,7 @@
 #include "fdem/error.hpp"
 #include "fdem/scenario.hpp"
 #include "fdem/simulate.hpp"
+#include "support/scenes.hpp"
 
 namespace fdem {
 namespace {
@@ -204,6 +205,22 @@ TEST_F(CheckpointTest, RefusesAnotherModel) {
     EXPECT_THAT(restart_error(path, other, dt()),
                 HasSubstr("it was written for a different model or time step (model hash"));
     fs::remove(path);
+}
+
+// The same 6-node mesh run as composites or as 4 plain CSTs per element has identical node and
+// triangle arrays; only Body::element differs, and a restart across that switch must be refused.
+TEST(CheckpointModelHash, DependsOnTheElementKind) {
+    auto build = [](ElementKind kind) {
+        Model m;
+        m.materials.push_back(scenes::paper_material("rock", 1e9, 0.3));
+        scenes::add_rectangle_order2(m, 0, 0, 1, 0.5, 2, 1, 0, kind);
+        finalize_model(m);
+        return m;
+    };
+    const Model composite = build(ElementKind::Composite6);
+    const Model cst = build(ElementKind::Cst);
+    ASSERT_EQ(composite.tri_nodes, cst.tri_nodes);  // the premise: only the kind differs
+    EXPECT_NE(model_hash(composite, 1e-6), model_hash(cst, 1e-6));
 }
 
 // Layout: 8 magic bytes, u32 format, u32 endian marker, u64 length + version string.

@@ -39,8 +39,9 @@ TEST(Dynamics, FreeFallMatchesTheParabolaAtTwoTimeSteps) {
 }
 
 // 1-D bar (nu = 0) clamped at x = 0, every other node moving at V: a compression/tension wave
-// travels at c = sqrt(E/rho) (theory §3.5). The free end keeps V until the wave from the clamp
-// arrives at t = L/c, then its velocity drops to -V.
+// travels at c = sqrt(E/rho) (1-D wave speed for nu = 0, where lambda = 0 and the P-wave speed of
+// theory §5 is sqrt(E/rho)). The free end keeps V until the wave from the clamp arrives at t = L/c,
+// then its velocity drops to -V.
 struct BarResult {
     Real arrival = -1;          // first time the free-end velocity falls below 0 [s]
     Real max_energy_error = 0;  // max |E_total - E_0| / E_0 over 10 transits
