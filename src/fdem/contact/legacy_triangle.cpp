@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "contact/field.hpp"
+#include "detect/grid.hpp"
 
 namespace fdem {
 
@@ -318,41 +319,12 @@ void find_legacy_couples(const Model& m, const Vec2* x, LegacyTriangleState& ls)
     }
     const Real r_max = bounding_circles(m, x, ls);
 
-    // grid over the centroids; cell >= 2 r_max + b, so every partner centroid lies in the 3x3
-    // block around a triangle's cell (NBS idea, spec §2.2)
-    Vec2 lo = ls.center[0], hi = lo;
-    for (int32_t i = 1; i < nt; ++i) {
-        lo.x = std::min(lo.x, ls.center[i].x);
-        lo.y = std::min(lo.y, ls.center[i].y);
-        hi.x = std::max(hi.x, ls.center[i].x);
-        hi.y = std::max(hi.y, ls.center[i].y);
-    }
-    Real cell = 2.0 * r_max + buf;
-    // at most ~4 cells per triangle for sparse layouts (larger cells stay correct)
-    const Real max_cells = 4.0 * nt + 16.0;
-    const Real area_cells = ((hi.x - lo.x) / cell + 1) * ((hi.y - lo.y) / cell + 1);
-    if (area_cells > max_cells) cell *= std::sqrt(area_cells / max_cells) * 1.01;
-    const int32_t nx = static_cast<int32_t>((hi.x - lo.x) / cell) + 1;
-    const int32_t ny = static_cast<int32_t>((hi.y - lo.y) / cell) + 1;
-    const Real inv = 1.0 / cell;
-
-    // counting sort by cell (stable: ascending list index within a cell)
-    const size_t ncell = static_cast<size_t>(nx) * static_cast<size_t>(ny);
-    ls.cell_start.assign(ncell + 1, 0);
-    ls.cell.resize(static_cast<size_t>(nt));
-    for (int32_t i = 0; i < nt; ++i) {
-        const int32_t ix = std::min(nx - 1, static_cast<int32_t>((ls.center[i].x - lo.x) * inv));
-        const int32_t iy = std::min(ny - 1, static_cast<int32_t>((ls.center[i].y - lo.y) * inv));
-        ls.cell[i] = iy * nx + ix;
-        ++ls.cell_start[static_cast<size_t>(ls.cell[i]) + 1];
-    }
-    for (size_t c = 0; c < ncell; ++c)
-        ls.cell_start[c + 1] += ls.cell_start[c];
-    ls.cell_items.resize(static_cast<size_t>(nt));
-    ls.cursor.assign(ls.cell_start.begin(), ls.cell_start.end() - 1);
-    for (int32_t i = 0; i < nt; ++i) {
-        ls.cell_items[static_cast<size_t>(ls.cursor[static_cast<size_t>(ls.cell[i])]++)] = i;
-    }
+    // grid over the centroids (detect/grid.hpp, shared with the smooth-contact broad phase);
+    // cell >= 2 r_max + b, so every partner centroid lies in the 3x3 block around a triangle's
+    // cell (NBS idea, spec §2.2)
+    const GridDims g = build_grid(ls.center.data(), nt, 2.0 * r_max + buf, ls.cell, ls.cell_start,
+                                  ls.cell_items, ls.cursor);
+    const int32_t nx = g.nx, ny = g.ny;
 
     // each triangle against the 3x3 block; keep partners with a larger id, sorted
     for (int32_t i = 0; i < nt; ++i) {

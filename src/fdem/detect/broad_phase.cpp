@@ -2,6 +2,8 @@
 // cells at least as large as the search radius, so a 3x3 block of cells suffices).
 #include "detect/broad_phase.hpp"
 
+#include "detect/grid.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -15,9 +17,8 @@ inline Vec2 cpos(const ContactModel& cm, const Vec2* x, const Vec2* xv, NodeId i
 }
 
 // bounding circles of the contactor sub-triangles at the current positions; returns the largest
-// radius and the bounding box of the centroids
-Real bounding_circles(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs, Vec2& lo,
-                      Vec2& hi) {
+// radius
+Real bounding_circles(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs) {
     const ContactModel& cm = m.contact;
     const int32_t nt = cm.num_sub_tris();
     cs.tri_center.resize(static_cast<size_t>(nt));
@@ -26,7 +27,6 @@ Real bounding_circles(const Model& m, const Vec2* x, const Vec2* xv, ContactStat
     Real* __restrict radius = cs.tri_radius.data();
     const std::array<NodeId, 3>* sub = cm.sub_tri.data();
     Real r_max = 0;
-    lo = hi = nt > 0 ? (cpos(cm, x, xv, sub[0][0])) : Vec2{};
     for (int32_t t = 0; t < nt; ++t) {
         const auto& q = sub[t];
         const Vec2 a = cpos(cm, x, xv, q[0]), b = cpos(cm, x, xv, q[1]), c = cpos(cm, x, xv, q[2]);
@@ -35,10 +35,6 @@ Real bounding_circles(const Model& m, const Vec2* x, const Vec2* xv, ContactStat
         center[t] = ctr;
         radius[t] = r;
         r_max = std::max(r_max, r);
-        lo.x = std::min(lo.x, ctr.x);
-        lo.y = std::min(lo.y, ctr.y);
-        hi.x = std::max(hi.x, ctr.x);
-        hi.y = std::max(hi.y, ctr.y);
     }
     return r_max;
 }
@@ -144,46 +140,23 @@ void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, ContactState
         cs.cand_begin.push_back(0);
         return;
     }
-    Vec2 lo, hi;
-    const Real r_max = bounding_circles(m, x, xv, cs, lo, hi);
+    const Real r_max = bounding_circles(m, x, xv, cs);
 
-    // grid over the centroids; cell >= r_max + b, so every accepted centroid lies in the 3x3
-    // block around the node's cell
-    Real cell = r_max + b;
-    // cap the number of cells at ~4 per sub-triangle (sparse layouts): larger cells stay correct
-    const Real max_cells = 4.0 * nt + 16.0;
-    const Real area_cells = ((hi.x - lo.x) / cell + 1) * ((hi.y - lo.y) / cell + 1);
-    if (area_cells > max_cells) cell *= std::sqrt(area_cells / max_cells) * 1.01;
-    const int32_t nx = static_cast<int32_t>((hi.x - lo.x) / cell) + 1;
-    const int32_t ny = static_cast<int32_t>((hi.y - lo.y) / cell) + 1;
-    const Real inv = 1.0 / cell;
-
-    // counting sort of the sub-triangles by cell (stable: ascending tri id within a cell)
-    const size_t ncell = static_cast<size_t>(nx) * static_cast<size_t>(ny);
-    cs.cell_start.assign(ncell + 1, 0);
-    cs.tri_cell.resize(static_cast<size_t>(nt));
-    cs.cell_items.resize(static_cast<size_t>(nt));
-    // query: first the fill cursor per cell, then the hits of one node (at most nt)
-    cs.query.resize(std::max(ncell, static_cast<size_t>(nt)));
+    // grid over the centroids (detect/grid.hpp); cell >= r_max + b, so every accepted centroid
+    // lies in the 3x3 block around the node's cell. cs.query is the fill cursor here, then the
+    // hit list of one node (at most nt)
+    const GridDims g = build_grid(cs.tri_center.data(), nt, r_max + b, cs.tri_cell, cs.cell_start,
+                                  cs.cell_items, cs.query);
+    const Vec2 lo = g.lo;
+    const int32_t nx = g.nx, ny = g.ny;
+    const Real inv = g.inv;
+    cs.query.resize(std::max(cs.query.size(), static_cast<size_t>(nt)));
     Vec2* __restrict center = cs.tri_center.data();
     Real* __restrict radius = cs.tri_radius.data();
     int32_t* __restrict tri_cell = cs.tri_cell.data();
-    int32_t* __restrict start = cs.cell_start.data();
-    int32_t* __restrict items = cs.cell_items.data();
-    for (int32_t t = 0; t < nt; ++t) {
-        const int32_t ix = std::min(nx - 1, static_cast<int32_t>((center[t].x - lo.x) * inv));
-        const int32_t iy = std::min(ny - 1, static_cast<int32_t>((center[t].y - lo.y) * inv));
-        tri_cell[t] = iy * nx + ix;
-        ++start[tri_cell[t] + 1];
-    }
-    for (size_t c = 0; c < ncell; ++c)
-        start[c + 1] += start[c];
-    {
-        int32_t* __restrict cursor = cs.query.data();
-        std::copy(start, start + ncell, cursor);
-        for (int32_t t = 0; t < nt; ++t)
-            items[cursor[tri_cell[t]]++] = t;
-    }
+    const int32_t* __restrict start = cs.cell_start.data();
+    const int32_t* __restrict items = cs.cell_items.data();
+
     // centres and radii into cell order, in place along the cycles of the permutation
     // (entry k takes sub-triangle items[k]; tri_cell, no longer needed, marks done entries)
     for (int32_t k = 0; k < nt; ++k) {
@@ -239,8 +212,7 @@ void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, ContactState
 
 void find_candidates_brute_force(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs) {
     const ContactModel& cm = m.contact;
-    Vec2 lo, hi;
-    bounding_circles(m, x, xv, cs, lo, hi);
+    bounding_circles(m, x, xv, cs);
     CandWriter w(cs);
     for (NodeId j : cm.boundary_nodes) {
         cs.query.clear();
