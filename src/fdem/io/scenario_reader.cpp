@@ -333,9 +333,10 @@ private:
             throw InputError({src_.name, 0, 0}, "body", "no [[body]] defined");
         }
         for (size_t i = 0; i < tables.size(); ++i) {
-            Fields f(
-                src_, *tables[i], fmt::format("[[body]] #{}", i + 1), fmt::format("body[{}]", i),
-                {"name", "mesh", "mesh_size", "group", "material", "velocity", "fixed", "element"});
+            Fields f(src_, *tables[i], fmt::format("[[body]] #{}", i + 1),
+                     fmt::format("body[{}]", i),
+                     {"name", "mesh", "mesh_size", "group", "material", "velocity", "fixed",
+                      "element", "pieces"});
             BodyEntry entry;
             entry.name = f.string("name", std::nullopt);
             entry.table = tables[i];
@@ -425,7 +426,25 @@ private:
             for (const int32_t t : tris) {
                 lm.tri_owner[static_cast<size_t>(t)] = static_cast<int>(i);
             }
+            // pieces (docs/scenario.md): "one" = the selection must be one connected piece (a
+            // disconnected mesh is usually a modelling error); "separate" = every connected
+            // piece becomes its own discrete element (a pack of grains meshed together)
+            const bool separate =
+                f.choice("pieces", std::string("one"), {"one", "separate"}) == "separate";
+            const BodyId first_body = m.num_bodies();
             entry.node_map = add_bodies(m, lm.data, tris, opt);
+            if (!separate && m.num_bodies() - first_body > 1) {
+                const Body& second = m.bodies[static_cast<size_t>(first_body) + 1];
+                const Vec2 at = m.node_x0[static_cast<size_t>(second.node_begin)];
+                f.fail(*f.node(f.has("group") ? "group" : "mesh"),
+                       f.has("group") ? "group" : "mesh",
+                       fmt::format("the triangles selected from mesh '{}' form {} disconnected "
+                                   "pieces (the second one has a node at ({:g}, {:g}) m); expected "
+                                   "one connected piece: connect the mesh (Gmsh: Coherence Mesh;), "
+                                   "select one piece with 'group', or set pieces = \"separate\" "
+                                   "to make every piece its own discrete element",
+                                   lm.path, m.num_bodies() - first_body, at.x, at.y));
+            }
             check_duplicate_nodes(f, lm, entry.node_map, m);
             bodies_.push_back(std::move(entry));
         }

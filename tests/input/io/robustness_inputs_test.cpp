@@ -104,14 +104,17 @@ TEST(RobustInputs, InvertedTriangleFoldsTheMesh) {
                              "remesh (e.g. with gmsh)"));
 }
 
-// A body entry whose triangles form two pieces is allowed: each connected component becomes its
-// own body (docs/scenario.md [[body]]). Coincident nodes of different bodies are allowed too
-// (bodies touching at t = 0).
+// A body entry whose triangles form two pieces is an error by default (tests/input/io/
+// pieces_test.cpp); with pieces = "separate" each connected component becomes its own body
+// (docs/scenario.md [[body]]). Coincident nodes of different bodies are allowed (bodies touching
+// at t = 0).
 TEST(RobustInputs, DisconnectedBodyBecomesOneBodyPerComponent) {
     const std::string mesh = write_temp(
         "split.msh", msh22({"1 0 0 0", "2 1 0 0", "3 0 1 0", "4 1 0 0", "5 2 0 0", "6 1 1 0"},
                            {"1 2 3", "4 5 6"}));
-    const Scenario sc = load_scenario_from_string(scenario(mesh), "ok.toml", ".");
+    EXPECT_THAT(error_of(scenario(mesh)), HasSubstr("form 2 disconnected pieces"));
+    const Scenario sc =
+        load_scenario_from_string(scenario(mesh, "pieces = \"separate\"\n"), "ok.toml", ".");
     ASSERT_EQ(sc.model.num_bodies(), 2);
     EXPECT_EQ(sc.model.bodies[0].name, "slab");
     EXPECT_EQ(sc.model.bodies[1].name, "slab");

@@ -246,7 +246,8 @@ material = "m"
 }
 
 TEST(LoadScenario, SameMeshFileIsSplitIntoComponents) {
-    // no group: every triangle of the .geo, two connected components -> two bodies, one entry
+    // no group: every triangle of the .geo, two connected components -> with pieces =
+    // "separate" two bodies, one entry (without it: an input error, tests/input/io/pieces_test)
     const Scenario sc = load_scenario_from_string(R"(
 [simulation]
 end_time = 1e-3
@@ -261,6 +262,7 @@ name = "both"
 mesh = "block_on_base.geo"
 mesh_size = 0.1
 material = "m"
+pieces = "separate"
 [[boundary]]
 body = "both"
 group = "block_corner"
