@@ -127,6 +127,7 @@ private:
     size_t pos_ = 0;
     bool format_seen_ = false;
     bool binary_ = false;
+    bool seen_tri3_ = false, seen_tri6_ = false;  ///< triangle orders met so far (MSH 2)
     bool swap_ = false;
     bool msh4_ = false;
     double version_ = 0;
@@ -411,6 +412,15 @@ private:
         return binary_ ? element_blocks2(at, total) : element_lines2(count_at, total);
     }
 
+    /// Gmsh 4.8 silently drops the first-order triangles of an MSH 2 file whose elementary
+    /// entity also holds 6-node triangles (found while adding the composite element), so a file
+    /// mixing the two orders is refused here rather than loaded with triangles missing.
+    bool mixes_triangle_orders(long long type) {
+        if (type == 2) seen_tri3_ = true;
+        if (type == 9) seen_tri6_ = true;
+        return seen_tri3_ && seen_tri6_;
+    }
+
     bool element_lines2(size_t count_at, long long n) {
         // lines left in the file (a last line without '\n' counts)
         const size_t rest = static_cast<size_t>(std::count(d_.begin() + pos_, d_.end(), '\n')) +
@@ -438,6 +448,13 @@ private:
             const int nn = nodes_of_type(v[1]);
             if (nn == 0) {
                 fail_line(fmt::format("element {} has unknown element type {}", v[0], v[1]));
+            }
+            if (mixes_triangle_orders(v[1])) {
+                fail_line(
+                    fmt::format("element {} is a {}-node triangle, but earlier elements are "
+                                "{}-node triangles; a mesh must be entirely first or "
+                                "second order (gmsh -order 1 or -order 2)",
+                                v[0], v[1] == 2 ? 3 : 6, v[1] == 2 ? 6 : 3));
             }
             const size_t want = 3 + static_cast<size_t>(v[2]) + static_cast<size_t>(nn);
             if (v.size() != want) {
@@ -475,6 +492,12 @@ private:
                                      where, total - done, total, done));
             }
             if (ntags < 0) fail(at, where + ": the number of tags must be >= 0");
+            if (mixes_triangle_orders(type)) {
+                fail(at, where +
+                             ": 3-node and 6-node triangles (types 2 and 9) in one file; a "
+                             "mesh must be entirely first or second order (gmsh -order 1 or "
+                             "-order 2)");
+            }
             const uint64_t rec = 4 * (1 + static_cast<uint64_t>(ntags) + nn);
             if (static_cast<uint64_t>(n) > left() / rec) {
                 fail(at, fmt::format("{}: {} element records of {} bytes each need {} bytes; "

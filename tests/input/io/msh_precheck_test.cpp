@@ -96,6 +96,54 @@ TEST(MshPrecheck, ValidBinaryMsh22StillLoads) {
     EXPECT_EQ(mesh.tris.size(), 1u);
 }
 
+// Gmsh 4.8 silently drops the 3-node triangles of an MSH 2 elementary entity that also holds
+// 6-node triangles (checked by hand: the mesh below loaded as one composite, the second triangle
+// gone), so mixing the orders is refused before Gmsh reads the file.
+TEST(MshPrecheck, Msh22MixingTriangleOrdersIsRefused) {
+    const std::string ascii = write_temp("mixed_ascii.msh", R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+9
+1 0 0 0
+2 1 0 0
+3 0 1 0
+4 0.5 0 0
+5 0.5 0.5 0
+6 0 0.5 0
+7 2 0 0
+8 3 0 0
+9 2 1 0
+$EndNodes
+$Elements
+2
+1 9 2 1 1 1 2 3 4 5 6
+2 2 2 1 1 7 8 9
+$EndElements
+)");
+    EXPECT_THAT(mesh_error(ascii),
+                StartsWith(prefix(ascii, 19) + "element 2 is a 3-node triangle, but earlier "
+                                               "elements are 6-node triangles; a mesh must be "
+                                               "entirely first or second order (gmsh -order 1 or "
+                                               "-order 2)"));
+
+    // binary: a block of one 3-node triangle, then a block of one 6-node triangle
+    std::string elements = "$Elements\n2\n" + i32(2) + i32(1) + i32(2);
+    for (int32_t v : {1, 1, 1, 1, 2, 3})
+        elements += i32(v);
+    const std::string second_block = kHead22 + nodes22() + elements;
+    elements += i32(9) + i32(1) + i32(2);
+    for (int32_t v : {2, 1, 1, 1, 2, 3, 1, 2, 3})
+        elements += i32(v);
+    const std::string binary =
+        write_temp("mixed_bin.msh", kHead22 + nodes22() + elements + "\n$EndElements\n");
+    EXPECT_THAT(mesh_error(binary),
+                StartsWith(prefix(binary, 9) + "$Elements (binary) block at byte " +
+                           std::to_string(second_block.size()) +
+                           " (type 9, count 1, tags 2): 3-node and 6-node triangles (types 2 and "
+                           "9) in one file"));
+}
+
 // No false alarm on what Gmsh itself writes: MSH 2.2 and 4.1, ASCII and binary, parametric nodes,
 // second order; each file gives the triangles Gmsh had in memory when it wrote it.
 TEST(MshPrecheck, GmshWrittenFilesOfEveryFlavourLoad) {
