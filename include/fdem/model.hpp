@@ -55,8 +55,8 @@ struct Body {
     int32_t material = 0;  ///< index into Model::materials
     bool fixed = false;    ///< every node held at its initial position
     ElementKind element = ElementKind::Cst;  ///< formulation of the triangles (see above)
-    NodeId node_begin = 0, node_end = 0;  ///< nodes [begin, end)
-    TriId tri_begin = 0, tri_end = 0;     ///< triangles [begin, end)
+    NodeId node_begin = 0, node_end = 0;     ///< nodes [begin, end)
+    TriId tri_begin = 0, tri_end = 0;        ///< triangles [begin, end)
 };
 
 /// Prescribed velocity components on a node set (a "fixed" component has velocity 0).
