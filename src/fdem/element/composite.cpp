@@ -83,24 +83,15 @@ void composite_range(const Model& m, const Vec2* __restrict x, const Vec2* __res
                 // viscous stress eta D of the sub-triangle, as for the CST (theory eq. 2.4)
                 if constexpr (kViscous) {
                     if (eta[t] > 0) {
-                        const Mat2 Ds = columns(xb - xa, xc - xa);
-                        const Mat2 L = columns(v[b] - v[a], v[cc] - v[a]) * inverse(Ds);
-                        const Real dxy = 0.5 * (L.xy + L.yx);
-                        const Mat2 D = {L.xx, dxy, dxy, L.yy};
+                        const Mat2 D = rate_of_deformation(v, a, b, cc, columns(xb - xa, xc - xa));
                         sigma = sigma + eta[t] * D;
                         power += J * area0[t] * eta[t] * ddot(D, D);
                     }
                 }
             }
 
-            // f_i += 1/2 sigma_s n_i^s, n_i^s the outward scaled normal of the edge of
-            // sub-triangle s opposite node i, current configuration (eq. 3.9, theory eq. 3.3)
-            const Vec2 na = {xc.y - xb.y, xb.x - xc.x};
-            const Vec2 nb = {xa.y - xc.y, xc.x - xa.x};
-            const Vec2 nc = {xb.y - xa.y, xa.x - xb.x};
-            f[a] += 0.5 * (sigma * na);
-            f[b] += 0.5 * (sigma * nb);
-            f[cc] += 0.5 * (sigma * nc);
+            // f_i += 1/2 sigma_s n_i^s of sub-triangle s (eq. 3.9, theory eq. 3.3)
+            add_triangle_forces(f, a, b, cc, xa, xb, xc, sigma);
         }
     }
     out.strain_energy += energy;

@@ -71,22 +71,14 @@ void element_range(const Model& m, const Vec2* __restrict x, const Vec2* __restr
         // viscous stress eta D, D = sym(L), L = [v1-v0, v2-v0] Ds^-1 (theory eq. 2.4)
         if constexpr (kViscous) {
             if (eta[t] > 0) {
-                const Mat2 L = columns(v[b] - v[a], v[c] - v[a]) * inverse(Ds);
-                const Real dxy = 0.5 * (L.xy + L.yx);
-                const Mat2 D = {L.xx, dxy, dxy, L.yy};
+                const Mat2 D = rate_of_deformation(v, a, b, c, Ds);
                 sigma = sigma + eta[t] * D;
                 power += J * area0[t] * eta[t] * ddot(D, D);
             }
         }
 
-        // nodal forces f_i = 1/2 sigma n_i, n_i = outward scaled normal of the edge opposite
-        // node i in the current configuration (theory eq. 3.3)
-        const Vec2 na = {xc.y - xb.y, xb.x - xc.x};
-        const Vec2 nb = {xa.y - xc.y, xc.x - xa.x};
-        const Vec2 nc = {xb.y - xa.y, xa.x - xb.x};
-        f[a] += 0.5 * (sigma * na);
-        f[b] += 0.5 * (sigma * nb);
-        f[c] += 0.5 * (sigma * nc);
+        // nodal forces f_i = 1/2 sigma n_i (theory eq. 3.3)
+        add_triangle_forces(f, a, b, c, xa, xb, xc, sigma);
     }
     out.strain_energy += energy;
     out.viscous_power += power;

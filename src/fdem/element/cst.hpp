@@ -41,6 +41,26 @@ inline Mat2 deformation_gradient(const Model& m, const Vec2* x, TriId t) {
     return columns(x[n[1]] - x[n[0]], x[n[2]] - x[n[0]]) * m.tri_dm_inv[t];
 }
 
+/// Rate of deformation D = sym(L), L = [v_b - v_a, v_c - v_a] Ds^-1 of triangle (a, b, c) with
+/// current edge matrix Ds (theory eqs. 3.2, 2.4); the viscous stress is eta D.
+inline Mat2 rate_of_deformation(const Vec2* v, NodeId a, NodeId b, NodeId c, const Mat2& Ds) {
+    const Mat2 L = columns(v[b] - v[a], v[c] - v[a]) * inverse(Ds);
+    const Real dxy = 0.5 * (L.xy + L.yx);
+    return {L.xx, dxy, dxy, L.yy};
+}
+
+/// Nodal forces f_i += 1/2 sigma n_i of triangle (a, b, c) at current positions (xa, xb, xc),
+/// n_i the outward normal of the edge opposite node i scaled by its length (theory eq. 3.3).
+inline void add_triangle_forces(Vec2* __restrict f, NodeId a, NodeId b, NodeId c, Vec2 xa, Vec2 xb,
+                                Vec2 xc, const Mat2& sigma) {
+    const Vec2 na = {xc.y - xb.y, xb.x - xc.x};
+    const Vec2 nb = {xa.y - xc.y, xc.x - xa.x};
+    const Vec2 nc = {xb.y - xa.y, xa.x - xb.x};
+    f[a] += 0.5 * (sigma * na);
+    f[b] += 0.5 * (sigma * nb);
+    f[c] += 0.5 * (sigma * nc);
+}
+
 /// Critical time step of one triangle: smallest altitude / P-wave speed (theory eq. 5.3).
 Real element_critical_dt(const Model& m, TriId t);
 
