@@ -118,6 +118,41 @@ struct Table {
     }
 };
 
+/// Distance from p to the segment [a, b] [m] (the exact distance of the field maps).
+inline double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+    const Vec2 ab = b - a;
+    double t = dot(p - a, ab) / norm2(ab);
+    t = std::clamp(t, 0.0, 1.0);
+    return norm(p - (a + t * ab));
+}
+
+/// Reference position of contact node i: a model node, or a virtual node placed by its frozen
+/// parent weights (fdem/contact_model.hpp).
+inline Vec2 contact_node_x0(const Model& m, NodeId i) {
+    const ContactModel& cm = m.contact;
+    if (i < cm.num_real_nodes) return m.node_x0[i];
+    const int32_t v = i - cm.num_real_nodes;
+    Vec2 p;
+    for (int k = 0; k < 3; ++k)
+        p += cm.virt_weight[v][k] * m.node_x0[cm.virt_parent[v][k]];
+    return p;
+}
+
+/// One row (x0, y0, x1, y1, x2, y2) per mesh triangle into mesh and per contact sub-triangle into
+/// sub: the outlines drawn under the field maps.
+inline void outline_rows(const Model& m, Table& mesh, Table& sub) {
+    for (TriId t = 0; t < m.num_tris(); ++t) {
+        const auto& tn = m.tri_nodes[t];
+        mesh.row({m.node_x0[tn[0]].x, m.node_x0[tn[0]].y, m.node_x0[tn[1]].x, m.node_x0[tn[1]].y,
+                  m.node_x0[tn[2]].x, m.node_x0[tn[2]].y});
+    }
+    for (const auto& q : m.contact.sub_tri) {
+        const Vec2 a = contact_node_x0(m, q[0]), b = contact_node_x0(m, q[1]),
+                   c = contact_node_x0(m, q[2]);
+        sub.row({a.x, a.y, b.x, b.y, c.x, c.y});
+    }
+}
+
 /// Sums over the nodes of a body: mass, centre of mass, momentum, contact force.
 struct BodySums {
     double mass = 0;

@@ -66,14 +66,7 @@ inline CompositeFieldResult sample_composite_field(const CompositeFieldCase& fc,
                                fc.shape);
     finalize_model(m);
     const ContactModel& cm = m.contact;
-    auto cpos = [&](NodeId i) {
-        if (i < cm.num_real_nodes) return m.node_x0[i];
-        const int32_t v = i - cm.num_real_nodes;
-        Vec2 p;
-        for (int k = 0; k < 3; ++k)
-            p += cm.virt_weight[v][k] * m.node_x0[cm.virt_parent[v][k]];
-        return p;
-    };
+    auto cpos = [&](NodeId i) { return contact_node_x0(m, i); };
     CompositeFieldResult r;
     r.num_sub = cm.num_sub_tris();
     r.num_virtual = cm.num_virtual();
@@ -101,25 +94,14 @@ inline CompositeFieldResult sample_composite_field(const CompositeFieldCase& fc,
             }
             if (!std::isnan(ds)) {
                 ex = 1e300;
-                for (const auto& e : cm.boundary_edges) {
-                    const Vec2 a = m.node_x0[e[0]], ab = m.node_x0[e[1]] - a;
-                    const double t = std::clamp(dot(x - a, ab) / norm2(ab), 0.0, 1.0);
-                    ex = std::min(ex, norm(x - (a + t * ab)));
-                }
+                for (const auto& e : cm.boundary_edges)
+                    ex = std::min(ex, segment_distance(x, m.node_x0[e[0]], m.node_x0[e[1]]));
                 r.max_error = std::max(r.max_error, std::abs(ds - ex));
             }
             r.grid.row({x.x, x.y, ds, ex});
         }
     }
-    for (TriId t = 0; t < m.num_tris(); ++t) {
-        const auto& tn = m.tri_nodes[t];
-        r.mesh.row({m.node_x0[tn[0]].x, m.node_x0[tn[0]].y, m.node_x0[tn[1]].x, m.node_x0[tn[1]].y,
-                    m.node_x0[tn[2]].x, m.node_x0[tn[2]].y});
-    }
-    for (const auto& q : cm.sub_tri) {
-        const Vec2 a = cpos(q[0]), b = cpos(q[1]), c = cpos(q[2]);
-        r.sub.row({a.x, a.y, b.x, b.y, c.x, c.y});
-    }
+    outline_rows(m, r.mesh, r.sub);
     return r;
 }
 

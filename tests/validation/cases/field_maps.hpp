@@ -60,13 +60,6 @@ inline std::vector<FieldShape> field_shapes() {
     return s;
 }
 
-inline double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
-    const Vec2 ab = b - a;
-    double t = dot(p - a, ab) / norm2(ab);
-    t = std::clamp(t, 0.0, 1.0);
-    return norm(p - (a + t * ab));
-}
-
 struct FieldMapResult {
     std::string name;
     Table grid{{"x", "y", "smooth", "legacy_b", "legacy_a", "exact"}};
@@ -89,15 +82,7 @@ inline FieldMapResult sample_field(const FieldShape& sh, int n = 240) {
     finalize_model(m);
     const ContactModel& cm = m.contact;
     const LegacyBoundaryField lb = build_legacy_boundary_field(m);
-    auto cpos = [&](NodeId i) {
-        if (i < cm.num_real_nodes) return m.node_x0[i];
-        const int32_t v = i - cm.num_real_nodes;
-        Vec2 p;
-        for (int k = 0; k < 3; ++k)
-            if (cm.virt_parent[v][k] != kNone)
-                p += cm.virt_weight[v][k] * m.node_x0[cm.virt_parent[v][k]];
-        return p;
-    };
+    auto cpos = [&](NodeId i) { return contact_node_x0(m, i); };
     FieldMapResult r;
     r.name = sh.name;
     Vec2 lo{1e30, 1e30}, hi{-1e30, -1e30};
@@ -148,15 +133,7 @@ inline FieldMapResult sample_field(const FieldShape& sh, int n = 240) {
             r.grid.row({x.x, x.y, ds, db, da, ex});
         }
     }
-    for (TriId t = 0; t < m.num_tris(); ++t) {
-        const auto& tn = m.tri_nodes[t];
-        r.mesh.row({m.node_x0[tn[0]].x, m.node_x0[tn[0]].y, m.node_x0[tn[1]].x, m.node_x0[tn[1]].y,
-                    m.node_x0[tn[2]].x, m.node_x0[tn[2]].y});
-    }
-    for (const auto& q : cm.sub_tri) {
-        const Vec2 a = cpos(q[0]), b = cpos(q[1]), c = cpos(q[2]);
-        r.sub.row({a.x, a.y, b.x, b.y, c.x, c.y});
-    }
+    outline_rows(m, r.mesh, r.sub);
     return r;
 }
 
