@@ -9,6 +9,7 @@
 
 #include "fdem/error.hpp"
 #include "fdem/scenario.hpp"
+#include "support/input_errors.hpp"
 
 namespace fdem {
 namespace {
@@ -36,24 +37,14 @@ composite_special_case = )" +
            value + "\n";
 }
 
-std::string what_of(const std::string& text) {
-    try {
-        load_scenario_from_string(text, "bad.toml", FDEM_TEST_DATA_DIR);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError for:\n" << text;
-    return {};
-}
-
 TEST(CompositeContactErrors, UnknownOptionNamesTheValidOnes) {
-    const std::string w = what_of(scenario("\"fann\""));
+    const std::string w = support::scenario_error(scenario("\"fann\""));
     EXPECT_THAT(w, StartsWith("bad.toml:15:26: error: [contact]: composite_special_case must be "
                               "one of \"fan\", \"split\", got \"fann\"; did you mean \"fan\"?"));
 }
 
 TEST(CompositeContactErrors, WrongTypeIsAnError) {
-    const std::string w = what_of(scenario("2"));
+    const std::string w = support::scenario_error(scenario("2"));
     EXPECT_THAT(w, StartsWith("bad.toml:15:26: error: [contact]: composite_special_case must be "));
 }
 

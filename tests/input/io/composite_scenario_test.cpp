@@ -11,6 +11,7 @@
 #include "fdem/error.hpp"
 #include "fdem/mesh.hpp"
 #include "fdem/scenario.hpp"
+#include "support/input_errors.hpp"
 
 namespace fdem {
 namespace {
@@ -37,16 +38,6 @@ name = "block"
 material = "rock"
 )" + mesh + "\n" +
            element_line + "\n";
-}
-
-std::string what_of(const std::string& text) {
-    try {
-        load_scenario_from_string(text, "bad.toml", kData);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError for:\n" << text;
-    return {};
 }
 
 const Body& only_body(const Scenario& sc) {
@@ -89,8 +80,8 @@ TEST(CompositeScenario, CstOnSixNodeMeshSplitsEachIntoFourTriangles) {
 }
 
 TEST(CompositeScenario, CompositeOnThreeNodeMshIsRejected) {
-    const std::string w =
-        what_of(scenario("mesh = \"square_22_ascii.msh\"", "element = \"composite\""));
+    const std::string w = support::scenario_error(
+        scenario("mesh = \"square_22_ascii.msh\"", "element = \"composite\""));
     EXPECT_THAT(w, StartsWith("bad.toml:15:11: error: body \"block\": element = \"composite\" "
                               "needs 6-node triangles (Gmsh type 9), but mesh '" +
                               kData +
@@ -101,13 +92,15 @@ TEST(CompositeScenario, CompositeOnThreeNodeMshIsRejected) {
 }
 
 TEST(CompositeScenario, UnknownElementIsRejected) {
-    const std::string w = what_of(scenario("mesh = \"square_22_ascii.msh\"", "element = \"cts\""));
+    const std::string w =
+        support::scenario_error(scenario("mesh = \"square_22_ascii.msh\"", "element = \"cts\""));
     EXPECT_THAT(w, StartsWith("bad.toml:15:11: error: body \"block\": element must be one of "
                               "\"cst\", \"composite\", got \"cts\"; did you mean \"cst\"?"));
 }
 
 TEST(CompositeScenario, ElementMustBeAString) {
-    const std::string w = what_of(scenario("mesh = \"square_22_ascii.msh\"", "element = 6"));
+    const std::string w =
+        support::scenario_error(scenario("mesh = \"square_22_ascii.msh\"", "element = 6"));
     EXPECT_THAT(w, StartsWith("bad.toml:15:11: error: body \"block\": element must be one of "
                               "\"cst\", \"composite\", got a number 6"));
 }

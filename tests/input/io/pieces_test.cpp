@@ -7,6 +7,7 @@
 
 #include "fdem/error.hpp"
 #include "fdem/scenario.hpp"
+#include "support/input_errors.hpp"
 
 namespace fdem {
 namespace {
@@ -36,18 +37,8 @@ mesh_size = 0.5
            "\n" + extra + "\n";
 }
 
-std::string what_of(const std::string& text) {
-    try {
-        load_scenario_from_string(text, "bad.toml", kData);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError for:\n" << text;
-    return {};
-}
-
 TEST(Pieces, DisconnectedSelectionIsAnErrorByDefault) {
-    const std::string msg = what_of(scenario("", ""));
+    const std::string msg = support::scenario_error(scenario("", ""));
     // the mesh key (line 14, column 8) is named, with the count, a node of the second piece and
     // the three remedies
     EXPECT_THAT(msg, HasSubstr("bad.toml:14:8: error: body \"blocks\": the triangles selected from "
@@ -60,7 +51,7 @@ TEST(Pieces, DisconnectedSelectionIsAnErrorByDefault) {
 }
 
 TEST(Pieces, TheGroupKeyIsNamedWhenItMadeTheSelection) {
-    const std::string msg = what_of(scenario("group = \"both\"", ""));
+    const std::string msg = support::scenario_error(scenario("group = \"both\"", ""));
     EXPECT_THAT(msg, HasSubstr("bad.toml:16:9: error: body \"blocks\": the triangles selected"));
 }
 
@@ -81,7 +72,7 @@ TEST(Pieces, SeparateMakesOneBodyPerPiece) {
 }
 
 TEST(Pieces, BadValueIsRejected) {
-    const std::string msg = what_of(scenario("", "pieces = \"split\""));
+    const std::string msg = support::scenario_error(scenario("", "pieces = \"split\""));
     EXPECT_THAT(msg, HasSubstr("bad.toml:17:10: error"));
     EXPECT_THAT(msg, HasSubstr("pieces"));
     EXPECT_THAT(msg, HasSubstr("\"one\""));
