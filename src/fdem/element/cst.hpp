@@ -35,6 +35,17 @@ ElementPass add_internal_forces(const Model& m, State& s);
 /// count. Called by finalize_model().
 ElementSchedule build_element_schedule(const Model& m);
 
+/// Kernel for the elastic (non-viscous) triangles: Auto = the AVX-512 kernel when the CPU has
+/// it (element/cst_simd.cpp), else the portable one; Portable = always the portable one. Both
+/// give bitwise the same forces, smallest J and strain energy; Portable exists so that tests can
+/// compare them (tests/unit/element/cst_simd_test.cpp). Process-wide; do not change it while a
+/// pass runs.
+enum class CstKernel { Auto, Portable };
+void set_cst_kernel(CstKernel k);
+
+/// The kernel the next pass uses for elastic triangles: "avx512" or "portable".
+const char* cst_kernel_name();
+
 /// Deformation gradient F = Ds Dm^-1 of triangle t (theory eq. 3.1).
 inline Mat2 deformation_gradient(const Model& m, const Vec2* x, TriId t) {
     const auto& n = m.tri_nodes[t];

@@ -11,12 +11,26 @@
 
 namespace fdem {
 
-/// Strain energy per unit reference area [J/m^3 * m = J/m^2 per unit thickness] (theory eq. 2.1).
-inline Real strain_energy_density(Real lambda, Real mu, const Mat2& F) {
-    const Real J = det(F);
-    const Real lnJ = std::log(J);
-    const Real trC = F.xx * F.xx + F.xy * F.xy + F.yx * F.yx + F.yy * F.yy;
+/// Strain energy per unit reference area [J/m^3 * m = J/m^2 per unit thickness] (theory eq. 2.1)
+/// from J = det F, tr C and ln J: the SIMD CST kernel (element/cst_simd.cpp) keeps J, tr C and
+/// ln J of a group of triangles and calls this, so its energy has the same bits as the F version.
+inline Real strain_energy_density(Real lambda, Real mu, Real J, Real trC, Real lnJ) {
     return 0.5 * mu * (trC - 2.0 - 2.0 * lnJ) + 0.25 * lambda * (J * J - 1.0 - 2.0 * lnJ);
+}
+
+/// The same with lnJ = std::log(J).
+inline Real strain_energy_density(Real lambda, Real mu, Real J, Real trC) {
+    return strain_energy_density(lambda, mu, J, trC, std::log(J));
+}
+
+/// tr C = tr(F^T F) = sum of the squared entries of F, summed in this order (theory eq. 2.1).
+inline Real trace_right_cauchy_green(const Mat2& F) {
+    return F.xx * F.xx + F.xy * F.xy + F.yx * F.yx + F.yy * F.yy;
+}
+
+/// Strain energy per unit reference area (theory eq. 2.1) from F.
+inline Real strain_energy_density(Real lambda, Real mu, const Mat2& F) {
+    return strain_energy_density(lambda, mu, det(F), trace_right_cauchy_green(F));
 }
 
 /// Elastic Cauchy stress [Pa] (theory eq. 2.2). Symmetric; returned as a full Mat2.

@@ -1,0 +1,254 @@
+// AVX-512 kernel of the elastic constant-strain triangle (docs/theory.md §2-3).
+//
+// Why (docs/performance.md, round 4): the portable kernel (element/cst.cpp) is compute-bound at
+// ~40 cycles per triangle with SSE2, two triangles per instruction. The build targets baseline
+// x86-64, so this file compiles only its kernel for AVX-512 (function attribute, no global flag)
+// and element/cst.cpp calls it when the CPU supports it.
+//
+// Bitwise the same as the portable kernel: every value is the same IEEE add, sub, mul or div of
+// the same operands in the same order (-ffp-contract=off, so no fused multiply-add), only 8
+// triangles at a time; the forces are scattered, the smallest J tracked and the strain energy
+// summed in triangle order, as there. tests/unit/element/cst_simd_test.cpp compares the bits.
+//
+// Per group of 8 triangles: (1) the corners are loaded as 16-byte Vec2 (no gather instruction:
+// on this CPU family the microcode mitigation of "gather data sampling" makes them slow) and
+// de-interleaved into x and y vectors; Dm^-1 of the 8 triangles is transposed in registers;
+// (2) F, J, sigma and the three nodal forces as 8-wide vectors; (3) the forces, interleaved
+// back into Vec2, are added to f triangle by triangle (neighbouring triangles share nodes, so
+// this stays scalar and ordered).
+#include "element/cst_simd.hpp"
+
+#include <immintrin.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "material/hyperelastic.hpp"
+
+// GCC 12 warns inside its own avx512fintrin.h about the undefined upper half of
+// _mm512_castpd256_pd512 (filled by the next insert) and in _mm512_reduce_min_pd: false positives
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+#define FDEM_AVX512 __attribute__((target("avx512f")))
+
+namespace fdem::detail {
+
+bool cst_avx512_supported() {
+    static const bool ok = __builtin_cpu_supports("avx512f");
+    return ok;
+}
+
+namespace {
+
+constexpr int kLanes = 8;
+
+// Material constants broadcast to all lanes.
+struct Consts {
+    __m512d mu, half_lambda, one, half;
+};
+
+// x and y of corner k (0, 1, 2) of the 8 triangles whose node ids are q[3 i + k].
+FDEM_AVX512 inline void load_corner(const double* xd, const int32_t* q, int k, __m512d& X,
+                                    __m512d& Y) {
+    const auto at = [](const double* p, const int32_t* q3, int i, int k3) {
+        return p + 2 * static_cast<ptrdiff_t>(q3[3 * i + k3]);
+    };
+    const __m256d l0 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(at(xd, q, 0, k))),
+                                            _mm_loadu_pd(at(xd, q, 1, k)), 1);
+    const __m256d l1 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(at(xd, q, 2, k))),
+                                            _mm_loadu_pd(at(xd, q, 3, k)), 1);
+    const __m256d h0 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(at(xd, q, 4, k))),
+                                            _mm_loadu_pd(at(xd, q, 5, k)), 1);
+    const __m256d h1 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(at(xd, q, 6, k))),
+                                            _mm_loadu_pd(at(xd, q, 7, k)), 1);
+    // z0 = x0 y0 x1 y1 x2 y2 x3 y3, z1 = x4 y4 ... x7 y7
+    const __m512d z0 = _mm512_insertf64x4(_mm512_castpd256_pd512(l0), l1, 1);
+    const __m512d z1 = _mm512_insertf64x4(_mm512_castpd256_pd512(h0), h1, 1);
+    X = _mm512_permutex2var_pd(z0, _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14), z1);
+    Y = _mm512_permutex2var_pd(z0, _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15), z1);
+}
+
+// Store the 8 Vec2 (fx[i], fy[i]) interleaved at out[0..15].
+FDEM_AVX512 inline void store_interleaved(double* out, __m512d fx, __m512d fy) {
+    _mm512_store_pd(out,
+                    _mm512_permutex2var_pd(fx, _mm512_setr_epi64(0, 8, 1, 9, 2, 10, 3, 11), fy));
+    _mm512_store_pd(out + 8,
+                    _mm512_permutex2var_pd(fx, _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15), fy));
+}
+
+// f[node] += (v[0], v[1])
+FDEM_AVX512 inline void add_force(double* fd, int32_t node, const double* v) {
+    double* p = fd + 2 * static_cast<ptrdiff_t>(node);
+    _mm_storeu_pd(p, _mm_add_pd(_mm_loadu_pd(p), _mm_load_pd(v)));
+}
+
+// Forces of 8 triangles with node ids q[0..23] and Dm^-1 dm[0..31] (8 Mat2, row-major): the
+// forces of corner k of lane i go to fo[16 k + 2 i], tr C to trc[i] (kEnergy); returns J.
+template <bool kEnergy>
+FDEM_AVX512 inline __m512d group(const double* xd, const int32_t* q, const double* dm,
+                                 const Consts& c, double* fo, double* trc) {
+    __m512d xa, ya, xb, yb, xc, yc;
+    load_corner(xd, q, 0, xa, ya);
+    load_corner(xd, q, 1, xb, yb);
+    load_corner(xd, q, 2, xc, yc);
+
+    // Dm^-1 of the 8 triangles: rows (xx xy yx yy) -> one vector per entry
+    const __m512d d0 = _mm512_loadu_pd(dm), d1 = _mm512_loadu_pd(dm + 8);
+    const __m512d d2 = _mm512_loadu_pd(dm + 16), d3 = _mm512_loadu_pd(dm + 24);
+    const __m512i lo_xx = _mm512_setr_epi64(0, 4, 8, 12, 1, 5, 9, 13);
+    const __m512i lo_yx = _mm512_setr_epi64(2, 6, 10, 14, 3, 7, 11, 15);
+    const __m512d e0 = _mm512_permutex2var_pd(d0, lo_xx, d1);  // xx t0-3 | xy t0-3
+    const __m512d e1 = _mm512_permutex2var_pd(d0, lo_yx, d1);  // yx t0-3 | yy t0-3
+    const __m512d e2 = _mm512_permutex2var_pd(d2, lo_xx, d3);  // xx t4-7 | xy t4-7
+    const __m512d e3 = _mm512_permutex2var_pd(d2, lo_yx, d3);  // yx t4-7 | yy t4-7
+    const __m512i low = _mm512_setr_epi64(0, 1, 2, 3, 8, 9, 10, 11);
+    const __m512i high = _mm512_setr_epi64(4, 5, 6, 7, 12, 13, 14, 15);
+    const __m512d dxx = _mm512_permutex2var_pd(e0, low, e2);
+    const __m512d dxy = _mm512_permutex2var_pd(e0, high, e2);
+    const __m512d dyx = _mm512_permutex2var_pd(e1, low, e3);
+    const __m512d dyy = _mm512_permutex2var_pd(e1, high, e3);
+
+    // F = Ds Dm^-1, Ds = [xb - xa, xc - xa] (theory eq. 3.1); as Mat2 operator*
+    const __m512d e1x = _mm512_sub_pd(xb, xa), e1y = _mm512_sub_pd(yb, ya);
+    const __m512d e2x = _mm512_sub_pd(xc, xa), e2y = _mm512_sub_pd(yc, ya);
+    const __m512d Fxx = _mm512_add_pd(_mm512_mul_pd(e1x, dxx), _mm512_mul_pd(e2x, dyx));
+    const __m512d Fxy = _mm512_add_pd(_mm512_mul_pd(e1x, dxy), _mm512_mul_pd(e2x, dyy));
+    const __m512d Fyx = _mm512_add_pd(_mm512_mul_pd(e1y, dxx), _mm512_mul_pd(e2y, dyx));
+    const __m512d Fyy = _mm512_add_pd(_mm512_mul_pd(e1y, dxy), _mm512_mul_pd(e2y, dyy));
+    const __m512d J = _mm512_sub_pd(_mm512_mul_pd(Fxx, Fyy), _mm512_mul_pd(Fxy, Fyx));
+
+    // sigma = (mu/J)(B - I) + (lambda/2)(J - 1/J) I, B = F F^T (theory eq. 2.2, cauchy_stress);
+    // B.yx = Fyx Fxx + Fyy Fxy has the same bits as B.xy (products and the sum commute)
+    const __m512d Bxx = _mm512_add_pd(_mm512_mul_pd(Fxx, Fxx), _mm512_mul_pd(Fxy, Fxy));
+    const __m512d Bxy = _mm512_add_pd(_mm512_mul_pd(Fxx, Fyx), _mm512_mul_pd(Fxy, Fyy));
+    const __m512d Byy = _mm512_add_pd(_mm512_mul_pd(Fyx, Fyx), _mm512_mul_pd(Fyy, Fyy));
+    const __m512d a = _mm512_div_pd(c.mu, J);
+    const __m512d p = _mm512_mul_pd(c.half_lambda, _mm512_sub_pd(J, _mm512_div_pd(c.one, J)));
+    const __m512d sxx = _mm512_add_pd(_mm512_mul_pd(a, _mm512_sub_pd(Bxx, c.one)), p);
+    const __m512d sxy = _mm512_mul_pd(a, Bxy);
+    const __m512d syy = _mm512_add_pd(_mm512_mul_pd(a, _mm512_sub_pd(Byy, c.one)), p);
+
+    // f_i = 1/2 sigma n_i, n_i the scaled outward normal of the edge opposite i (theory eq. 3.3)
+    const __m512d nx[3] = {_mm512_sub_pd(yc, yb), _mm512_sub_pd(ya, yc), _mm512_sub_pd(yb, ya)};
+    const __m512d ny[3] = {_mm512_sub_pd(xb, xc), _mm512_sub_pd(xc, xa), _mm512_sub_pd(xa, xb)};
+    for (int k = 0; k < 3; ++k) {
+        const __m512d fx = _mm512_mul_pd(
+            c.half, _mm512_add_pd(_mm512_mul_pd(sxx, nx[k]), _mm512_mul_pd(sxy, ny[k])));
+        const __m512d fy = _mm512_mul_pd(
+            c.half, _mm512_add_pd(_mm512_mul_pd(sxy, nx[k]), _mm512_mul_pd(syy, ny[k])));
+        store_interleaved(fo + 16 * k, fx, fy);
+    }
+    if constexpr (kEnergy) {
+        // tr C in the order of trace_right_cauchy_green (theory eq. 2.1)
+        const __m512d trC = _mm512_add_pd(
+            _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(Fxx, Fxx), _mm512_mul_pd(Fxy, Fxy)),
+                          _mm512_mul_pd(Fyx, Fyx)),
+            _mm512_mul_pd(Fyy, Fyy));
+        _mm512_store_pd(trc, trC);
+    }
+    return J;
+}
+
+template <bool kEnergy>
+FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriId end, Real lambda,
+                       Real mu, ElementPass& out) {
+    const auto* tn = reinterpret_cast<const int32_t*>(m.tri_nodes.data());
+    const auto* dmd = reinterpret_cast<const double*>(m.tri_dm_inv.data());
+    const Real* area0 = m.tri_area0.data();
+    const auto* xd = reinterpret_cast<const double*>(x);
+    auto* fd = reinterpret_cast<double*>(f);
+    static_assert(sizeof(m.tri_nodes[0]) == 3 * sizeof(int32_t) &&
+                  sizeof(Mat2) == 4 * sizeof(Real));
+    static_assert(sizeof(Vec2) == 2 * sizeof(double));
+
+    const Consts c{_mm512_set1_pd(mu), _mm512_set1_pd(0.5 * lambda), _mm512_set1_pd(1.0),
+                   _mm512_set1_pd(0.5)};
+    alignas(64) double fo[3 * 2 * kLanes];
+    alignas(64) double jac[kLanes], trc[kLanes], lnj[kLanes];
+    alignas(64) int32_t pad_q[3 * kLanes];
+    alignas(64) double pad_dm[4 * kLanes];
+    Real energy = 0;
+    Real min_j = out.min_jacobian;
+    TriId min_t = out.min_jacobian_tri;
+
+    for (TriId t0 = begin; t0 < end; t0 += kLanes) {
+        const int n = static_cast<int>(std::min<TriId>(kLanes, end - t0));
+        const int32_t* q = tn + 3 * static_cast<ptrdiff_t>(t0);
+        const double* dm = dmd + 4 * static_cast<ptrdiff_t>(t0);
+        if (n < kLanes) {
+            // last group of the range: the missing lanes repeat its last triangle (computed,
+            // unused)
+            for (int i = 0; i < kLanes; ++i) {
+                const int src = std::min(i, n - 1);
+                std::copy_n(q + 3 * src, 3, pad_q + 3 * i);
+                std::copy_n(dm + 4 * src, 4, pad_dm + 4 * i);
+            }
+            q = pad_q;
+            dm = pad_dm;
+        }
+        const __m512d J = group<kEnergy>(xd, q, dm, c, fo, trc);
+        _mm512_store_pd(jac, J);
+        const __mmask8 positive = _mm512_cmp_pd_mask(J, _mm512_setzero_pd(), _CMP_GT_OQ);
+        if (n == kLanes && positive == 0xff) {
+            // no inverted triangle: the first lane holding the group's smallest J is the one the
+            // triangle-order scan with a strict < would keep
+            const double gmin = _mm512_reduce_min_pd(J);
+            if (gmin < min_j) {
+                const __mmask8 at = _mm512_cmp_pd_mask(J, _mm512_set1_pd(gmin), _CMP_EQ_OQ);
+                min_j = gmin;
+                min_t = t0 + std::countr_zero(static_cast<unsigned>(at));
+            }
+            for (int i = 0; i < kLanes; ++i) {
+                add_force(fd, q[3 * i], fo + 2 * i);
+                add_force(fd, q[3 * i + 1], fo + 16 + 2 * i);
+                add_force(fd, q[3 * i + 2], fo + 32 + 2 * i);
+            }
+            if constexpr (kEnergy) {
+                // the logs first: a call clobbers every vector register, and the running sum
+                // would live on the stack (+5 cycles of store forwarding per triangle)
+                for (int i = 0; i < kLanes; ++i)
+                    lnj[i] = std::log(jac[i]);
+                for (int i = 0; i < kLanes; ++i)  // theory eq. 2.1
+                    energy +=
+                        area0[t0 + i] * strain_energy_density(lambda, mu, jac[i], trc[i], lnj[i]);
+            }
+            continue;
+        }
+        // as the portable kernel, triangle by triangle
+        for (int i = 0; i < n; ++i) {
+            const Real Ji = jac[i];
+            if (Ji < min_j) {
+                min_j = Ji;
+                min_t = t0 + i;
+            }
+            if (!(Ji > 0)) continue;  // inverted: reported by the caller, no force
+            if constexpr (kEnergy)
+                energy += area0[t0 + i] * strain_energy_density(lambda, mu, Ji, trc[i]);
+            add_force(fd, q[3 * i], fo + 2 * i);
+            add_force(fd, q[3 * i + 1], fo + 16 + 2 * i);
+            add_force(fd, q[3 * i + 2], fo + 32 + 2 * i);
+        }
+    }
+    if constexpr (kEnergy) {
+        out.strain_energy += energy;
+        out.viscous_power += 0.0;  // as element_range<false, true>
+    }
+    out.min_jacobian = min_j;
+    out.min_jacobian_tri = min_t;
+}
+
+}  // namespace
+
+void elastic_range_avx512(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriId end,
+                          Real lambda, Real mu, bool with_energy, ElementPass& out) {
+    if (with_energy) {
+        range<true>(m, x, f, begin, end, lambda, mu, out);
+    } else {
+        range<false>(m, x, f, begin, end, lambda, mu, out);
+    }
+}
+
+}  // namespace fdem::detail

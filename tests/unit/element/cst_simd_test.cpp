@@ -1,0 +1,168 @@
+// SIMD CST kernel (element/cst_simd.cpp): the forces, the strain energy, the smallest det F and
+// its triangle must be bitwise those of the portable kernel (element/cst.cpp), for full groups of
+// 8 triangles, the partial group at the end of a range, inverted triangles and whole steps.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "element/cst.hpp"
+#include "fdem/simulate.hpp"
+#include "support/hash.hpp"
+#include "support/scenes.hpp"
+
+namespace fdem {
+namespace {
+
+// Restores the default kernel when a test ends, also on failure.
+struct KernelGuard {
+    ~KernelGuard() { set_cst_kernel(CstKernel::Auto); }
+};
+
+bool simd_available() {
+    set_cst_kernel(CstKernel::Auto);
+    return std::string(cst_kernel_name()) != "portable";
+}
+
+uint64_t bits(Real r) {
+    uint64_t u;
+    std::memcpy(&u, &r, sizeof u);
+    return u;
+}
+
+struct Pass {
+    std::vector<Vec2> f;
+    ElementPass p;
+};
+
+// serial pass over all triangles with the given kernel
+Pass serial_pass(const Model& m, const std::vector<Vec2>& x, CstKernel k) {
+    set_cst_kernel(k);
+    Pass r;
+    r.f.assign(x.size(), Vec2{});
+    const std::vector<Vec2> v(x.size());
+    r.p = add_internal_forces(m, x.data(), v.data(), r.f.data(), 0, m.num_tris());
+    return r;
+}
+
+void expect_same_bits(const Pass& a, const Pass& b) {
+    ASSERT_EQ(a.f.size(), b.f.size());
+    for (size_t i = 0; i < a.f.size(); ++i) {
+        ASSERT_EQ(bits(a.f[i].x), bits(b.f[i].x)) << "node " << i;
+        ASSERT_EQ(bits(a.f[i].y), bits(b.f[i].y)) << "node " << i;
+    }
+    EXPECT_EQ(bits(a.p.strain_energy), bits(b.p.strain_energy));
+    EXPECT_EQ(bits(a.p.viscous_power), bits(b.p.viscous_power));
+    EXPECT_EQ(bits(a.p.min_jacobian), bits(b.p.min_jacobian));
+    EXPECT_EQ(a.p.min_jacobian_tri, b.p.min_jacobian_tri);
+}
+
+// a block whose nodes are moved by up to `amplitude` cell sizes (seeded): strains of every sign
+// and size, and with amplitude ~0.5 some inverted triangles
+std::vector<Vec2> perturbed(const Model& m, Real amplitude, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<Real> u(-1.0, 1.0);
+    const Real h = 1.0 / std::sqrt(m.num_tris() / 2.0);
+    std::vector<Vec2> x = m.node_x0;
+    for (Vec2& p : x)
+        p += amplitude * h * Vec2{u(rng), u(rng)};
+    return x;
+}
+
+TEST(CstSimd, ForcesEnergyAndSmallestJMatchThePortableKernel) {
+    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    KernelGuard guard;
+    // 2 * 37 * 37 = 2738 triangles: not a multiple of 8, so the last group is partial
+    scenes::BlockOptions o;
+    o.num_tris = 2738;
+    const Model m = scenes::make_block(o);
+    ASSERT_NE(m.num_tris() % 8, 0);
+    for (uint32_t seed : {1u, 2u, 3u}) {
+        const std::vector<Vec2> x = perturbed(m, 0.1, seed);
+        const Pass a = serial_pass(m, x, CstKernel::Portable);
+        const Pass b = serial_pass(m, x, CstKernel::Auto);
+        expect_same_bits(a, b);
+        EXPECT_GT(a.p.strain_energy, 0);
+        EXPECT_GT(a.p.min_jacobian, 0);  // no inverted triangle at this amplitude
+    }
+}
+
+TEST(CstSimd, InvertedTrianglesAndEveryRangeEndMatch) {
+    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    KernelGuard guard;
+    scenes::BlockOptions o;
+    o.num_tris = 800;
+    const Model m = scenes::make_block(o);
+    // large moves: some triangles inverted (J <= 0), others not; ranges [0, end) of every length
+    // from 1 to 40 cover every partial group
+    const std::vector<Vec2> x = perturbed(m, 0.6, 11);
+    const Pass all = serial_pass(m, x, CstKernel::Portable);
+    ASSERT_LT(all.p.min_jacobian, 0);  // the scene does hold inverted triangles
+    for (TriId end = 1; end <= 40; ++end) {
+        for (CstKernel k : {CstKernel::Portable, CstKernel::Auto}) {
+            set_cst_kernel(k);
+            std::vector<Vec2> f(x.size());
+            const std::vector<Vec2> v(x.size());
+            const ElementPass p = add_internal_forces(m, x.data(), v.data(), f.data(), 0, end);
+            static std::vector<Vec2> f_ref;
+            static ElementPass p_ref;
+            if (k == CstKernel::Portable) {
+                f_ref = f;
+                p_ref = p;
+                continue;
+            }
+            expect_same_bits({f_ref, p_ref}, {f, p});
+        }
+    }
+    expect_same_bits(all, serial_pass(m, x, CstKernel::Auto));
+}
+
+// whole steps (parallel chunked pass, node update) give the same state hash and energies;
+// `strain` > 0 moves every node by up to that much (deterministic) so every triangle is strained
+void expect_same_run(const Model& m, int steps, int threads, Real strain = 0) {
+    KernelGuard guard;
+    omp_set_num_threads(threads);
+    uint64_t hash[2];
+    Energy e[2];
+    for (int k = 0; k < 2; ++k) {
+        set_cst_kernel(k == 0 ? CstKernel::Portable : CstKernel::Auto);
+        State s = make_state(m, 0.5 * stable_time_step(m));
+        for (size_t i = 0; i < s.x.size(); ++i)
+            s.x[i] += strain * Vec2{std::sin(1.7 * i), std::cos(2.3 * i)};
+        for (int i = 0; i < steps; ++i) {
+            s.need_energy = i % 3 != 1;  // both element paths: with and without the energy
+            step(m, s);
+        }
+        hash[k] = scenes::state_hash(s);
+        e[k] = s.energy;
+    }
+    EXPECT_EQ(hash[0], hash[1]);
+    EXPECT_EQ(bits(e[0].strain), bits(e[1].strain));
+    EXPECT_EQ(bits(e[0].kinetic), bits(e[1].kinetic));
+    EXPECT_GT(e[0].strain, 0);
+}
+
+TEST(CstSimd, BlockStepsAreBitwiseTheSame) {
+    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    scenes::BlockOptions o;
+    o.num_tris = 20000;  // parallel pass (> 32 chunks)
+    o.gravity = o.clamp = true;
+    const Model m = scenes::make_block(o);
+    expect_same_run(m, 30, 1);
+    expect_same_run(m, 30, 2);
+}
+
+TEST(CstSimd, ParticleBoxStepsAreBitwiseTheSame) {
+    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    scenes::ParticleOptions o;
+    o.nx = o.ny = 20;  // chunks of many 5-8 triangle bodies: partial groups everywhere; contact
+    const Model m = scenes::make_particle_box(o);
+    expect_same_run(m, 200, 2, 1e-5);
+}
+
+}  // namespace
+}  // namespace fdem
