@@ -164,72 +164,82 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriI
                   sizeof(Mat2) == 4 * sizeof(Real));
     static_assert(sizeof(Vec2) == 2 * sizeof(double));
 
+    // the strain energy is summed per block of kBlock triangles after their forces: first all
+    // their logs (a call clobbers every vector register, so calls between vector groups cost
+    // reloads, and a running sum across calls would live on the stack), then the sum in
+    // triangle order, as the portable kernel
+    constexpr int kBlock = 256;
+    static_assert(kBlock % kLanes == 0);
     const Consts c{_mm512_set1_pd(mu), _mm512_set1_pd(0.5 * lambda), _mm512_set1_pd(1.0),
                    _mm512_set1_pd(0.5)};
     alignas(64) double fo[3 * 2 * kLanes];
-    alignas(64) double jac[kLanes], trc[kLanes], lnj[kLanes];
+    alignas(64) double jac[kEnergy ? kBlock : kLanes], trc[kEnergy ? kBlock : kLanes];
+    alignas(64) double lnj[kEnergy ? kBlock : 1];
     alignas(64) int32_t pad_q[3 * kLanes];
     alignas(64) double pad_dm[4 * kLanes];
     Real energy = 0;
     Real min_j = out.min_jacobian;
     TriId min_t = out.min_jacobian_tri;
 
-    for (TriId t0 = begin; t0 < end; t0 += kLanes) {
-        const int n = static_cast<int>(std::min<TriId>(kLanes, end - t0));
-        const int32_t* q = tn + 3 * static_cast<ptrdiff_t>(t0);
-        const double* dm = dmd + 4 * static_cast<ptrdiff_t>(t0);
-        if (n < kLanes) {
-            // last group of the range: the missing lanes repeat its last triangle (computed,
-            // unused)
-            for (int i = 0; i < kLanes; ++i) {
-                const int src = std::min(i, n - 1);
-                std::copy_n(q + 3 * src, 3, pad_q + 3 * i);
-                std::copy_n(dm + 4 * src, 4, pad_dm + 4 * i);
+    for (TriId b0 = begin; b0 < end; b0 += kBlock) {
+        const TriId b1 = std::min<TriId>(end, b0 + kBlock);
+        for (TriId t0 = b0; t0 < b1; t0 += kLanes) {
+            const int n = static_cast<int>(std::min<TriId>(kLanes, b1 - t0));
+            const int32_t* q = tn + 3 * static_cast<ptrdiff_t>(t0);
+            const double* dm = dmd + 4 * static_cast<ptrdiff_t>(t0);
+            if (n < kLanes) {
+                // last group of the range: the missing lanes repeat its last triangle (computed,
+                // unused)
+                for (int i = 0; i < kLanes; ++i) {
+                    const int src = std::min(i, n - 1);
+                    std::copy_n(q + 3 * src, 3, pad_q + 3 * i);
+                    std::copy_n(dm + 4 * src, 4, pad_dm + 4 * i);
+                }
+                q = pad_q;
+                dm = pad_dm;
             }
-            q = pad_q;
-            dm = pad_dm;
-        }
-        const __m512d J = group<kEnergy>(xd, q, dm, c, fo, trc);
-        _mm512_store_pd(jac, J);
-        const __mmask8 positive = _mm512_cmp_pd_mask(J, _mm512_setzero_pd(), _CMP_GT_OQ);
-        if (n == kLanes && positive == 0xff) {
-            // no inverted triangle: the first lane holding the group's smallest J is the one the
-            // triangle-order scan with a strict < would keep
-            const double gmin = _mm512_reduce_min_pd(J);
-            if (gmin < min_j) {
-                const __mmask8 at = _mm512_cmp_pd_mask(J, _mm512_set1_pd(gmin), _CMP_EQ_OQ);
-                min_j = gmin;
-                min_t = t0 + std::countr_zero(static_cast<unsigned>(at));
+            double* jg = kEnergy ? jac + (t0 - b0) : jac;
+            const __m512d J = group<kEnergy>(xd, q, dm, c, fo, kEnergy ? trc + (t0 - b0) : trc);
+            _mm512_store_pd(jg, J);
+            const __mmask8 positive = _mm512_cmp_pd_mask(J, _mm512_setzero_pd(), _CMP_GT_OQ);
+            if (n == kLanes && positive == 0xff) {
+                // no inverted triangle: the first lane holding the group's smallest J is the one
+                // the triangle-order scan with a strict < would keep
+                const double gmin = _mm512_reduce_min_pd(J);
+                if (gmin < min_j) {
+                    const __mmask8 at = _mm512_cmp_pd_mask(J, _mm512_set1_pd(gmin), _CMP_EQ_OQ);
+                    min_j = gmin;
+                    min_t = t0 + std::countr_zero(static_cast<unsigned>(at));
+                }
+                for (int i = 0; i < kLanes; ++i) {
+                    add_force(fd, q[3 * i], fo + 2 * i);
+                    add_force(fd, q[3 * i + 1], fo + 16 + 2 * i);
+                    add_force(fd, q[3 * i + 2], fo + 32 + 2 * i);
+                }
+                continue;
             }
-            for (int i = 0; i < kLanes; ++i) {
+            // as the portable kernel, triangle by triangle
+            for (int i = 0; i < n; ++i) {
+                const Real Ji = jg[i];
+                if (Ji < min_j) {
+                    min_j = Ji;
+                    min_t = t0 + i;
+                }
+                if (!(Ji > 0)) continue;  // inverted: reported by the caller, no force
                 add_force(fd, q[3 * i], fo + 2 * i);
                 add_force(fd, q[3 * i + 1], fo + 16 + 2 * i);
                 add_force(fd, q[3 * i + 2], fo + 32 + 2 * i);
             }
-            if constexpr (kEnergy) {
-                // the logs first: a call clobbers every vector register, and the running sum
-                // would live on the stack (+5 cycles of store forwarding per triangle)
-                for (int i = 0; i < kLanes; ++i)
-                    lnj[i] = std::log(jac[i]);
-                for (int i = 0; i < kLanes; ++i)  // theory eq. 2.1
-                    energy +=
-                        area0[t0 + i] * strain_energy_density(lambda, mu, jac[i], trc[i], lnj[i]);
-            }
-            continue;
         }
-        // as the portable kernel, triangle by triangle
-        for (int i = 0; i < n; ++i) {
-            const Real Ji = jac[i];
-            if (Ji < min_j) {
-                min_j = Ji;
-                min_t = t0 + i;
+        if constexpr (kEnergy) {
+            const int nb = static_cast<int>(b1 - b0);
+            for (int i = 0; i < nb; ++i)
+                lnj[i] = jac[i] > 0 ? std::log(jac[i]) : 0.0;
+            for (int i = 0; i < nb; ++i) {  // theory eq. 2.1; inverted triangles have none
+                if (jac[i] > 0)
+                    energy +=
+                        area0[b0 + i] * strain_energy_density(lambda, mu, jac[i], trc[i], lnj[i]);
             }
-            if (!(Ji > 0)) continue;  // inverted: reported by the caller, no force
-            if constexpr (kEnergy)
-                energy += area0[t0 + i] * strain_energy_density(lambda, mu, Ji, trc[i]);
-            add_force(fd, q[3 * i], fo + 2 * i);
-            add_force(fd, q[3 * i + 1], fo + 16 + 2 * i);
-            add_force(fd, q[3 * i + 2], fo + 32 + 2 * i);
         }
     }
     if constexpr (kEnergy) {
