@@ -20,6 +20,7 @@
 #include "element/cst.hpp"
 #include "fdem/error.hpp"
 #include "fdem/simulate.hpp"
+#include "integrate/node_update.hpp"
 
 namespace fdem {
 
@@ -74,20 +75,15 @@ State make_state(const Model& m, Real dt) {
 
 namespace {
 
-// Constants of one node update.
-struct NodeUpdate {
-    Real dt;     ///< step [s]
-    Real dt_v;   ///< velocity step: dt/2 on the first step (theory eq. 5.1), else dt
-    Real c;      ///< mass damping coefficient [1/s]
-    Vec2 g;      ///< gravity [m/s^2]
-    bool first;  ///< first step: v^0 is given, v^n = v^0
-};
+/// Kernel of the node update (set_node_kernel).
+NodeKernel g_node_kernel = NodeKernel::Auto;
 
 // Steps 5-7 for every node: gravity and mass damping, v^{n+1/2} = v^{n-1/2} + dt f/m, the
 // energies at t^n, and x^{n+1} = x^n + dt v^{n+1/2} (supported nodes are redone by the caller
 // once their velocity is prescribed). Partial sums per fixed block of kNodeBlock nodes go to
 // part[kNodeSlots * block]. kGravity / kDamped compile out the gravity work (and its read of
 // X) and the damping term when they are zero, which leaves the sums bitwise unchanged.
+// The AVX-512 kernel (integrate/node_update_simd.cpp) does the same per block, bitwise.
 template <bool kGravity, bool kDamped>
 void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2* __restrict v,
                   const Vec2* __restrict f, Real* __restrict part) {
@@ -96,10 +92,17 @@ void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2*
     const Real* __restrict mass = m.node_mass.data();
     const Real* __restrict inv_mass = m.node_inv_mass.data();
     const Vec2* __restrict x0 = m.node_x0.data();
+    const bool simd = node_update_uses_avx512();
+    const NodeArrays arrays{x, v, f, mass, inv_mass, x0};
 #pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
     for (NodeId blk = 0; blk < n_blocks; ++blk) {
         Real kin = 0, grav = 0, damp = 0;
         const NodeId end = std::min(nn, (blk + 1) * kNodeBlock);
+        Real* slot = part + kNodeSlots * static_cast<size_t>(blk);
+        if (simd) {
+            detail::node_block_avx512(arrays, u, kGravity, kDamped, blk * kNodeBlock, end, slot);
+            continue;
+        }
         for (NodeId i = blk * kNodeBlock; i < end; ++i) {
             const Real inv = inv_mass[i];
             if (inv == 0) continue;  // nodes of fixed bodies
@@ -116,7 +119,6 @@ void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2*
             v[i] = v_new;
             x[i] += u.dt * v_new;
         }
-        Real* slot = part + kNodeSlots * static_cast<size_t>(blk);
         slot[0] = kin;
         slot[1] = grav;
         slot[2] = damp;
@@ -143,6 +145,15 @@ void apply_kicks(const Model& m, State& s) {
 }
 
 }  // namespace
+
+void set_node_kernel(NodeKernel k) {
+    g_node_kernel = k;
+}
+
+bool node_update_uses_avx512() {
+    static const bool supported = __builtin_cpu_supports("avx512f");
+    return g_node_kernel == NodeKernel::Auto && supported;
+}
 
 void step(const Model& m, State& s) {
     const NodeId nn = m.num_nodes();

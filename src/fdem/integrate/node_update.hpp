@@ -1,0 +1,46 @@
+// Node update of the explicit step (integrate/step.cpp, docs/theory.md §5): one block of nodes,
+// portable and AVX-512. Private to integrate/step.cpp (and its tests).
+#pragma once
+
+#include "fdem/math.hpp"
+
+namespace fdem {
+
+/// Constants of one node update.
+struct NodeUpdate {
+    Real dt;     ///< step [s]
+    Real dt_v;   ///< velocity step: dt/2 on the first step (theory eq. 5.1), else dt
+    Real c;      ///< mass damping coefficient [1/s]
+    Vec2 g;      ///< gravity [m/s^2]
+    bool first;  ///< first step: v^0 is given, v^n = v^0
+};
+
+/// The arrays the node update reads and writes.
+struct NodeArrays {
+    Vec2* __restrict x;
+    Vec2* __restrict v;
+    const Vec2* __restrict f;
+    const Real* __restrict mass;
+    const Real* __restrict inv_mass;
+    const Vec2* __restrict x0;
+};
+
+/// Which node-update kernel step() uses: Auto = AVX-512 when the CPU has it, Portable = the
+/// plain loop. Bitwise the same x, v and energies; Portable exists so that tests can compare
+/// (tests/unit/integrate/node_update_simd_test.cpp). Process-wide; not while a step runs.
+enum class NodeKernel { Auto, Portable };
+void set_node_kernel(NodeKernel k);
+/// true when step() runs the AVX-512 node update.
+bool node_update_uses_avx512();
+
+namespace detail {
+
+/// Nodes [begin, end) with the AVX-512 kernel: the same per-node expressions as the portable
+/// loop in integrate/step.cpp (update_nodes), 8 nodes per instruction; the energy terms are then
+/// summed node by node in order into sums[0..2] (kinetic2, gravity work, damping power), so the
+/// sums have the same bits. Only call when the CPU has AVX-512F.
+void node_block_avx512(const NodeArrays& a, const NodeUpdate& u, bool gravity, bool damped,
+                       int32_t begin, int32_t end, Real* sums);
+
+}  // namespace detail
+}  // namespace fdem
