@@ -37,6 +37,9 @@ void BM_NarrowPhase(benchmark::State& st) {
     st.counters["pairs"] = pairs;
     st.counters["tris_per_pair"] = static_cast<double>(s.contact.cand_tri.size()) / pairs;
     st.counters["active"] = s.contact.active_contacts;
+    st.counters["sub_tris"] = m.contact.num_sub_tris();
+    st.counters["virtual"] = m.contact.num_virtual();
+    st.counters["bodies"] = m.num_bodies();
 }
 
 BENCHMARK(BM_NarrowPhase)

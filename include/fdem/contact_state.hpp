@@ -41,6 +41,13 @@ struct PairResult {
     Real dissipated = 0;    ///< energy dissipated by the evaluation [J/m]
 };
 
+/// Axis-aligned box of a contactor body's sub-triangles at the current step, widened by a small
+/// margin, for the exact early reject of the narrow phase (contact.cpp body_boxes()); an infinite
+/// box (lo = -inf, hi = +inf) where the reject is not proven safe. Per-step scratch.
+struct BodyBox {
+    Vec2 lo, hi;
+};
+
 /// A candidate couple of mesh triangles of different bodies for baseline A (spec §1.2,
 /// docs/theory.md §7.3), a < b, with the sliding distances of its 6 edges (friction history,
 /// spec §1.2 step 9; kept while the couple stays a candidate, so it survives the edge leaving
@@ -110,14 +117,19 @@ struct ContactState {
     std::vector<int32_t> tri_cell;  ///< grid cell of each sub-triangle
     std::vector<int32_t> cell_start;
     std::vector<int32_t> cell_items;
-    /// scratch: per-node list of the broad phase, then per candidate pair the sub-triangle the
-    /// narrow phase located (-1: not in contact; pair_out[p] is written only where >= 0)
+    /// scratch: per-node list of the broad phase, then the narrow phase's list of the candidate
+    /// pairs in contact (ascending within each of its fixed chunks of pairs; pair_out[p] is
+    /// written only for those pairs)
     std::vector<int32_t> query;
 
     // ---- pair history: ping-pong buffers, both sorted by (node, body) ----------------
     std::vector<ActiveContact> active;
     std::vector<ActiveContact> active_next;
     std::vector<PairResult> pair_out;  ///< per candidate pair, scratch (see PairResult)
+    std::vector<BodyBox> body_box;     ///< per body, scratch of add_contact_forces()
+    /// false: no body-box reject (every box infinite), for the tests that compare the narrow
+    /// phase with and without it; not saved in checkpoints
+    bool box_reject = true;
 
     // ---- kinematics of the virtual nodes this step --------------------------------------
     std::vector<Vec2> xv;  ///< positions [m]

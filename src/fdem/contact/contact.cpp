@@ -32,6 +32,15 @@ constexpr Real kRejectMargin = 1e-9;
 // candidate pairs per step below which the narrow phase runs on one thread (fork/join of a
 // parallel region costs about as much as a few thousand pair evaluations)
 constexpr int32_t kMinParallelPairs = 2048;
+// the narrow phase splits the pairs into this many fixed chunks (independent of the thread
+// count); each chunk lists its pairs in contact at the front of its range of cs.query
+constexpr int32_t kPairChunks = 64;
+
+// Body-box reject (body_boxes(), box_rejects() in contact.hpp; proof at body_boxes()):
+constexpr Real kBoxMargin = 1e-6;  // box widened by kBoxMargin W (W: larger box extent)
+constexpr Real kBoxAspect = 1e-6;  // needs |2A| >= kBoxAspect W^2 for every sub-triangle
+constexpr Real kBoxScale = 1e-8;   // needs W >= kBoxScale max |coordinate| of the box
+constexpr Real kBoxMinW2 = 1e-200, kBoxMaxW2 = 1e200;  // no under- or overflow in the bound
 
 inline Vec2 cpos(const ContactModel& cm, const Vec2* x, const Vec2* xv, NodeId i) {
     return i < cm.num_real_nodes ? x[i] : xv[i - cm.num_real_nodes];
@@ -102,6 +111,7 @@ void init_contact_state(const Model& m, State& s) {
     cs.cand_begin.reserve(4 * nb + 17);
     cs.cand_tri.reserve(16 * nb + 64);
     cs.pair_out.reserve(4 * nb + 16);
+    cs.body_box.assign(static_cast<size_t>(m.num_bodies()), BodyBox{});
     cs.tri_center.reserve(nt);
     cs.tri_radius.reserve(nt);
     cs.tri_cell.reserve(nt);
@@ -122,6 +132,67 @@ void update_virtual_nodes(const Model& m, State& s) {
         const auto& w = cm.virt_weight[k];
         cs.xv[k] = w[0] * x[p[0]] + w[1] * x[p[1]] + w[2] * x[p[2]];
         cs.vv[k] = w[0] * v[p[0]] + w[1] * v[p[1]] + w[2] * v[p[2]];
+    }
+}
+
+namespace {
+
+// Per-step box of every contactor body, for the exact early reject of a candidate pair whose
+// target node lies well outside the body (docs/performance.md, round 4). In the contact-heavy
+// pack ~99.8 % of the candidate pairs are not in contact and most of their nodes lie outside the
+// contactor's box, so one 32-byte box replaces the sub-triangle vertex gathers of the pair.
+//
+// Box of body b: [lo, hi] = the bounds of the vertices p of all its sub-triangles (the same
+// positions the locate loop uses), widened by delta = kBoxMargin W, W = max(W_x, W_y). The
+// box is made infinite (never rejects) unless every sub-triangle has computed |a2| =
+// |cross(p1 - p0, p2 - p0)| >= kBoxAspect W^2 > 0, W^2 lies in [kBoxMinW2, kBoxMaxW2] and
+// W >= kBoxScale max |coordinate|. Claim: if then x lies outside [lo, hi] by d > 0 along some
+// axis, with d the largest such excess and d <= kBoxFar (W_x + W_y), the locate loop rejects
+// every sub-triangle of b in its early test (some c_i beyond kRejectMargin |a2| on the outer
+// side), so skipping the pair gives bitwise the same result (not in contact).
+// Proof sketch (u = 2^-53; ^ marks computed, * exact values):
+//  - lo = fl(min - delta) with u |min| <= 0.02 delta (scale guard), so x is outside the
+//    unwidened box of every sub-triangle T of b by D >= 0.98 delta along that axis;
+//  - exact barycentric N* of x in T sum to 1 and x = sum N*_i p_i, so along that axis
+//    -D > x - min_T = sum N*_i (p_i - min_T) >= -2 eta W, eta = largest -N*_i: some
+//    c*_i = N*_i A* (A* = exact 2A) has the sign opposite to A* and |c*_i| > D |A*| / (2W);
+//  - rounding: |c^_i - c*_i| <= 4.5u * 2 M^2 < 2e-15 M^2 with M = max |p_k - x|_inf <= D + W,
+//    |a2^ - A*| < 2e-15 W^2, so |A*| >= 0.99 kBoxAspect W^2 and sign(a2^) = sign(A*);
+//  - with t = D / W in [0.98e-6, 2.1e6] and alpha = |A*| / W^2 >= 0.99e-6 the outer-side excess
+//    of c^_i is >= (t/2) alpha W^2 - 2e-15 (1 + t)^2 W^2, which exceeds kRejectMargin |a2^|
+//    (<= 1.01e-9 alpha W^2) by a factor >= 200 at both ends of the t range, hence in between
+//    (the difference is concave in t).
+// NaN or infinite positions fail the guards (infinite box); a NaN node never gives d > 0.
+}  // namespace
+
+void body_boxes(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
+                int32_t nbodies) {
+    constexpr Real inf = std::numeric_limits<Real>::infinity();
+    for (BodyId b = 0; b < nbodies; ++b) {
+        Real lx = inf, ly = inf, hx = -inf, hy = -inf, amin = inf;
+        bool nonzero = true;
+        for (int32_t t = cm.body_sub_begin[b]; t < cm.body_sub_begin[b + 1]; ++t) {
+            const auto& q = cm.sub_tri[t];
+            const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
+            for (const Vec2& pk : p) {
+                lx = std::min(lx, pk.x);
+                hx = std::max(hx, pk.x);
+                ly = std::min(ly, pk.y);
+                hy = std::max(hy, pk.y);
+            }
+            const Real a2 = std::abs(cross(p[1] - p[0], p[2] - p[0]));  // as in evaluate_pair
+            nonzero = nonzero && a2 > 0;                                // false for NaN
+            amin = std::min(amin, a2);
+        }
+        const Real w = std::max(hx - lx, hy - ly), w2 = w * w;
+        const Real c = std::max({std::abs(lx), std::abs(hx), std::abs(ly), std::abs(hy)});
+        if (nonzero && w2 >= kBoxMinW2 && w2 <= kBoxMaxW2 && amin >= kBoxAspect * w2 &&
+            w >= kBoxScale * c) {
+            const Real delta = kBoxMargin * w;
+            box[b] = BodyBox{{lx - delta, ly - delta}, {hx + delta, hy + delta}};
+        } else {
+            box[b] = BodyBox{{-inf, -inf}, {inf, inf}};
+        }
     }
 }
 
@@ -273,20 +344,45 @@ void add_contact_forces(const Model& m, State& s) {
     }
 
     // 3a. narrow phase and law of every pair, independent of each other: in parallel into the
-    //     per-pair buffers (cs.query for all, pair_out only for pairs in contact; below
-    //     kMinParallelPairs fork/join dominates)
+    //     per-pair buffer pair_out (written only for pairs in contact); each of the kPairChunks
+    //     fixed chunks of pairs lists its pairs in contact, ascending, at the front of its range
+    //     of cs.query. The body box rejects most pairs before any sub-triangle is touched
+    //     (exact: body_boxes()). Below kMinParallelPairs fork/join dominates.
     const int32_t npairs = static_cast<int32_t>(cs.cand_node.size());
     auto before = [](const ActiveContact& a, NodeId j, BodyId c) {
         return a.node < j || (a.node == j && a.body < c);
     };
+    cs.body_box.resize(static_cast<size_t>(m.num_bodies()));
+    if (cs.box_reject) {
+        body_boxes(cm, x, xv, cs.body_box.data(), m.num_bodies());
+    } else {
+        constexpr Real inf = std::numeric_limits<Real>::infinity();
+        std::fill(cs.body_box.begin(), cs.body_box.end(), BodyBox{{-inf, -inf}, {inf, inf}});
+    }
     cs.pair_out.resize(static_cast<size_t>(npairs));
-    cs.query.resize(static_cast<size_t>(npairs));  // the located sub-triangle per pair
+    cs.query.resize(static_cast<size_t>(npairs));
     PairResult* out = cs.pair_out.data();
-    int32_t* pair_tri = cs.query.data();
-    const ContactState& ccs = cs;
+    int32_t* in_contact = cs.query.data();
+    int32_t chunk_count[kPairChunks];
+    auto chunk_begin = [npairs](int32_t ch) {
+        return static_cast<int32_t>(static_cast<int64_t>(npairs) * ch / kPairChunks);
+    };
+    {
+        const ContactState& ccs = cs;
+        const NodeId* cand_node = cs.cand_node.data();
+        const BodyId* cand_body = cs.cand_body.data();
+        const BodyBox* box = cs.body_box.data();
 #pragma omp parallel for schedule(static) if (npairs > kMinParallelPairs)
-    for (int32_t pr = 0; pr < npairs; ++pr)
-        pair_tri[pr] = evaluate_pair(m, ccs, x, v, xv, vv, dt, pr, out[pr]);
+        for (int32_t ch = 0; ch < kPairChunks; ++ch) {
+            const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
+            int32_t n = b;
+            for (int32_t pr = b; pr < e; ++pr) {
+                if (box_rejects(box[cand_body[pr]], x[cand_node[pr]])) continue;
+                if (evaluate_pair(m, ccs, x, v, xv, vv, dt, pr, out[pr]) >= 0) in_contact[n++] = pr;
+            }
+            chunk_count[ch] = n - b;
+        }
+    }
 
     // 3b. apply in pair order, merged with the previous active list (both sorted by (node,
     //     body)), releasing the histories of pairs that left contact in that merged order: the
@@ -312,34 +408,35 @@ void add_contact_forces(const Model& m, State& s) {
         }
         dissipated += release_energy(p, a.h, scale, lost);
     };
-    for (int32_t pr = 0; pr < npairs; ++pr) {
-        const NodeId j = cs.cand_node[pr];
-        const BodyId c = cs.cand_body[pr];
-        while (ia < cs.active.size() && before(cs.active[ia], j, c))
-            release(cs.active[ia++]);
-        const bool matched =
-            ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c;
-        if (matched) ++ia;
-        if (pair_tri[pr] < 0) {
-            if (matched) release(cs.active[ia - 1]);
-            continue;
+    // only the pairs in contact, in ascending pair order: an active pair that is a candidate
+    // but not in contact is released at the same place of the merged order as before (by the
+    // while loop, before the next larger key), so the order of every sum is unchanged
+    for (int32_t ch = 0; ch < kPairChunks; ++ch) {
+        const int32_t b = chunk_begin(ch);
+        for (int32_t k = b; k < b + chunk_count[ch]; ++k) {
+            const int32_t pr = in_contact[k];
+            const NodeId j = cs.cand_node[pr];
+            const BodyId c = cs.cand_body[pr];
+            while (ia < cs.active.size() && before(cs.active[ia], j, c))
+                release(cs.active[ia++]);
+            if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) ++ia;
+            const PairResult& o = out[pr];
+
+            // f on the target, -N_i f on the contactor (eq. 20)
+            const auto& q = cm.sub_tri[o.tri];
+            s.f[j] += o.f;
+            s.f_contact[j] += o.f;
+            for (int kk = 0; kk < 3; ++kk)
+                add_node_force(cm, s, q[kk], -o.N[kk] * o.f);
+
+            const Real ratio = o.h.depth_ratio;
+            cs.max_depth_ratio = std::max(cs.max_depth_ratio, ratio);
+            if (ratio > cm.deep_ratio_limit) ++cs.deep_penetrations;
+
+            stored += o.stored;
+            dissipated += o.dissipated;
+            cs.active_next.push_back(ActiveContact{j, c, o.h});
         }
-        const PairResult& o = out[pr];
-
-        // f on the target, -N_i f on the contactor (eq. 20)
-        const auto& q = cm.sub_tri[o.tri];
-        s.f[j] += o.f;
-        s.f_contact[j] += o.f;
-        for (int k = 0; k < 3; ++k)
-            add_node_force(cm, s, q[k], -o.N[k] * o.f);
-
-        const Real ratio = o.h.depth_ratio;
-        cs.max_depth_ratio = std::max(cs.max_depth_ratio, ratio);
-        if (ratio > cm.deep_ratio_limit) ++cs.deep_penetrations;
-
-        stored += o.stored;
-        dissipated += o.dissipated;
-        cs.active_next.push_back(ActiveContact{j, c, o.h});
     }
     while (ia < cs.active.size())
         release(cs.active[ia++]);

@@ -1,6 +1,8 @@
 // Contact entry points called by the step pipeline and by finalize_model().
 #pragma once
 
+#include <algorithm>
+
 #include "fdem/model.hpp"
 #include "fdem/state.hpp"
 
@@ -20,6 +22,24 @@ void add_contact_forces(const Model& m, State& s);
 /// Positions and velocities of the virtual contact nodes (s.contact.xv, vv) from s.x, s.v
 /// (spec §4.4-2). add_contact_forces() calls it first; exposed for tests and output.
 void update_virtual_nodes(const Model& m, State& s);
+
+/// Narrow-phase early reject, exposed for tests: box[b] for every body b < nbodies from the
+/// positions of its contactor sub-triangles' vertices (x real, xv virtual), widened by a tiny
+/// margin, or infinite where the reject is not proven exact (contact.cpp has the proof).
+void body_boxes(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
+                int32_t nbodies);
+
+/// true: a target node at p is provably in none of the sub-triangles of the body of box b:
+/// the locate test of the narrow phase would reject every one of them (contact.cpp
+/// body_boxes()). Only points within 1e6 (W_x + W_y) of the box are rejected (the bound on the
+/// rounding of the edge functions grows with the distance).
+inline bool box_rejects(const BodyBox& b, Vec2 p) {
+    constexpr Real kBoxFar = 1e6;
+    const Real dx = std::max(b.lo.x - p.x, p.x - b.hi.x);
+    const Real dy = std::max(b.lo.y - p.y, p.y - b.hi.y);
+    const Real d = std::max(dx, dy);
+    return d > 0 && d <= kBoxFar * ((b.hi.x - b.lo.x) + (b.hi.y - b.lo.y));
+}
 
 /// Largest stable dt [s] imposed by the contact penalty (spec §3.4); +inf without contact.
 Real contact_stable_dt(const Model& m);

@@ -256,8 +256,11 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     EXPECT_EQ(sizeof(LegacyCouple), 56u) << "LegacyCouple changed: update io/checkpoint.cpp";
     EXPECT_EQ(sizeof(LegacyTriangleState), 320u)
         << "LegacyTriangleState changed: update io/checkpoint.cpp";
-    EXPECT_EQ(sizeof(ContactState), 768u) << "ContactState changed: update io/checkpoint.cpp";
-    EXPECT_EQ(sizeof(State), 1016u) << "State changed: update io/checkpoint.cpp";
+    // 768 -> 800 (State 1016 -> 1048): ContactState::body_box (per-step scratch of the narrow
+    // phase's early reject) and box_reject (a test switch, default on) are not saved: neither
+    // carries information between steps, and the reject does not change any result
+    EXPECT_EQ(sizeof(ContactState), 800u) << "ContactState changed: update io/checkpoint.cpp";
+    EXPECT_EQ(sizeof(State), 1048u) << "State changed: update io/checkpoint.cpp";
 }
 
 // Baseline A keeps its own history (couples with per-edge sliding distances): same contract.
