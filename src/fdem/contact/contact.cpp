@@ -174,14 +174,13 @@ void body_boxes(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* 
         for (int32_t t = cm.body_sub_begin[b]; t < cm.body_sub_begin[b + 1]; ++t) {
             const auto& q = cm.sub_tri[t];
             const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
-            for (const Vec2& pk : p) {
-                lx = std::min(lx, pk.x);
-                hx = std::max(hx, pk.x);
-                ly = std::min(ly, pk.y);
-                hy = std::max(hy, pk.y);
-            }
+            // bounds of the sub-triangle first: one min/max per sub-triangle on the chains
+            lx = std::min(lx, std::min(p[0].x, std::min(p[1].x, p[2].x)));
+            hx = std::max(hx, std::max(p[0].x, std::max(p[1].x, p[2].x)));
+            ly = std::min(ly, std::min(p[0].y, std::min(p[1].y, p[2].y)));
+            hy = std::max(hy, std::max(p[0].y, std::max(p[1].y, p[2].y)));
             const Real a2 = std::abs(cross(p[1] - p[0], p[2] - p[0]));  // as in evaluate_pair
-            nonzero = nonzero && a2 > 0;                                // false for NaN
+            nonzero &= a2 > 0;                                          // false for NaN
             amin = std::min(amin, a2);
         }
         const Real w = std::max(hx - lx, hy - ly), w2 = w * w;
@@ -330,9 +329,18 @@ void add_contact_forces(const Model& m, State& s) {
     // 2. skin (spec §2.3): x^n - x^{n-1} = dt v^{n-1/2}; two objects close by at most
     //    2 dt max|v| per step, so the candidates stay complete until the sum exceeds b
     if (!cs.need_rebuild) {
-        Real v2 = 0;
-        for (NodeId i = 0; i < m.num_nodes(); ++i)
-            v2 = std::max(v2, norm2(v[i]));
+        // four running maxima (max is exact and order-free, NaN is skipped by each the same
+        // way as by one): four independent dependency chains instead of one
+        Real v2s[4] = {0, 0, 0, 0};
+        const NodeId nn = m.num_nodes();
+        NodeId i = 0;
+        for (; i + 4 <= nn; i += 4) {
+            for (int k = 0; k < 4; ++k)
+                v2s[k] = std::max(v2s[k], norm2(v[i + k]));
+        }
+        for (; i < nn; ++i)
+            v2s[0] = std::max(v2s[0], norm2(v[i]));
+        const Real v2 = std::max(std::max(v2s[0], v2s[1]), std::max(v2s[2], v2s[3]));
         cs.skin_used += 2.0 * dt * std::sqrt(v2);
         if (cs.skin_used > cm.buffer) cs.need_rebuild = true;
     }
@@ -375,12 +383,20 @@ void add_contact_forces(const Model& m, State& s) {
 #pragma omp parallel for schedule(static) if (npairs > kMinParallelPairs)
         for (int32_t ch = 0; ch < kPairChunks; ++ch) {
             const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
+            // pass 1, branch-free: the pairs the box does not reject, in order
             int32_t n = b;
             for (int32_t pr = b; pr < e; ++pr) {
-                if (box_rejects(box[cand_body[pr]], x[cand_node[pr]])) continue;
-                if (evaluate_pair(m, ccs, x, v, xv, vv, dt, pr, out[pr]) >= 0) in_contact[n++] = pr;
+                in_contact[n] = pr;
+                n += !box_rejects(box[cand_body[pr]], x[cand_node[pr]]);
             }
-            chunk_count[ch] = n - b;
+            // pass 2: locate and law of those; the pairs in contact, compacted in place
+            int32_t nc = b;
+            for (int32_t k = b; k < n; ++k) {
+                const int32_t pr = in_contact[k];
+                if (evaluate_pair(m, ccs, x, v, xv, vv, dt, pr, out[pr]) >= 0)
+                    in_contact[nc++] = pr;
+            }
+            chunk_count[ch] = nc - b;
         }
     }
 

@@ -38,7 +38,7 @@ inline bool box_rejects(const BodyBox& b, Vec2 p) {
     const Real dx = std::max(b.lo.x - p.x, p.x - b.hi.x);
     const Real dy = std::max(b.lo.y - p.y, p.y - b.hi.y);
     const Real d = std::max(dx, dy);
-    return d > 0 && d <= kBoxFar * ((b.hi.x - b.lo.x) + (b.hi.y - b.lo.y));
+    return (d > 0) & (d <= kBoxFar * ((b.hi.x - b.lo.x) + (b.hi.y - b.lo.y)));  // no branch
 }
 
 /// Largest stable dt [s] imposed by the contact penalty (spec §3.4); +inf without contact.
