@@ -174,7 +174,7 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriI
                    _mm512_set1_pd(0.5)};
     alignas(64) double fo[3 * 2 * kLanes];
     alignas(64) double jac[kEnergy ? kBlock : kLanes], trc[kEnergy ? kBlock : kLanes];
-    alignas(64) double lnj[kEnergy ? kBlock : 1];
+    alignas(64) double lnj[kEnergy ? kBlock : 1], wa[kEnergy ? kBlock : 1];
     alignas(64) int32_t pad_q[3 * kLanes];
     alignas(64) double pad_dm[4 * kLanes];
     Real energy = 0;
@@ -235,10 +235,24 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriI
             const int nb = static_cast<int>(b1 - b0);
             for (int i = 0; i < nb; ++i)
                 lnj[i] = jac[i] > 0 ? std::log(jac[i]) : 0.0;
-            for (int i = 0; i < nb; ++i) {  // theory eq. 2.1; inverted triangles have none
-                if (jac[i] > 0)
-                    energy +=
-                        area0[b0 + i] * strain_energy_density(lambda, mu, jac[i], trc[i], lnj[i]);
+            // A0 W, W = (mu/2)(tr C - 2 - 2 ln J) + (lambda/4)(J^2 - 1 - 2 ln J) (theory eq. 2.1):
+            // strain_energy_density(lambda, mu, J, trC, lnJ) operation by operation, 8 at a time
+            const __m512d hmu = _mm512_set1_pd(0.5 * mu), qlambda = _mm512_set1_pd(0.25 * lambda);
+            const __m512d two = _mm512_set1_pd(2.0);
+            for (int i = 0; i < nb; i += kLanes) {
+                const __mmask8 in = static_cast<__mmask8>((1u << std::min(kLanes, nb - i)) - 1);
+                const __m512d J = _mm512_maskz_load_pd(in, jac + i);
+                const __m512d T = _mm512_maskz_load_pd(in, trc + i);
+                const __m512d L2 = _mm512_mul_pd(two, _mm512_maskz_load_pd(in, lnj + i));
+                const __m512d W = _mm512_add_pd(
+                    _mm512_mul_pd(hmu, _mm512_sub_pd(_mm512_sub_pd(T, two), L2)),
+                    _mm512_mul_pd(qlambda,
+                                  _mm512_sub_pd(_mm512_sub_pd(_mm512_mul_pd(J, J), c.one), L2)));
+                _mm512_store_pd(wa + i,
+                                _mm512_mul_pd(_mm512_maskz_loadu_pd(in, area0 + b0 + i), W));
+            }
+            for (int i = 0; i < nb; ++i) {  // in triangle order; inverted triangles have none
+                if (jac[i] > 0) energy += wa[i];
             }
         }
     }
