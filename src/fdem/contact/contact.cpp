@@ -169,6 +169,8 @@ namespace {
 void body_boxes(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
                 int32_t nbodies) {
     constexpr Real inf = std::numeric_limits<Real>::infinity();
+    // bodies are independent: shared among the threads when called in a parallel region
+#pragma omp for schedule(static)
     for (BodyId b = 0; b < nbodies; ++b) {
         Real lx = inf, ly = inf, hx = -inf, hy = -inf, amin = inf;
         bool nonzero = true;
@@ -362,9 +364,7 @@ void add_contact_forces(const Model& m, State& s) {
         return a.node < j || (a.node == j && a.body < c);
     };
     cs.body_box.resize(static_cast<size_t>(m.num_bodies()));
-    if (cs.box_reject) {
-        body_boxes(cm, x, xv, cs.body_box.data(), m.num_bodies());
-    } else {
+    if (!cs.box_reject) {
         constexpr Real inf = std::numeric_limits<Real>::infinity();
         std::fill(cs.body_box.begin(), cs.body_box.end(), BodyBox{{-inf, -inf}, {inf, inf}});
     }
@@ -380,26 +380,35 @@ void add_contact_forces(const Model& m, State& s) {
         const ContactState& ccs = cs;
         const NodeId* cand_node = cs.cand_node.data();
         const BodyId* cand_body = cs.cand_body.data();
-        const BodyBox* box = cs.body_box.data();
-#pragma omp parallel for schedule(static) if (npairs > kMinParallelPairs)
-        for (int32_t ch = 0; ch < kPairChunks; ++ch) {
-            const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
-            // pass 1, branch-free: the pairs the box does not reject, in order
-            int32_t n = b;
-            for (int32_t pr = b; pr < e; ++pr) {
-                // with body ids far apart in space (shuffled numbering) the box is a cache miss
-                if (pr + kBoxPrefetch < e) __builtin_prefetch(&box[cand_body[pr + kBoxPrefetch]]);
-                in_contact[n] = pr;
-                n += !box_rejects(box[cand_body[pr]], x[cand_node[pr]]);
+        BodyBox* box = cs.body_box.data();
+        const bool boxes = cs.box_reject;
+        const int32_t nbodies = m.num_bodies();
+        // one parallel region: the boxes (a worksharing loop inside body_boxes(), whose
+        // implicit barrier completes them), then the pairs
+#pragma omp parallel if (npairs > kMinParallelPairs)
+        {
+            if (boxes) body_boxes(cm, x, xv, box, nbodies);
+#pragma omp for schedule(static)
+            for (int32_t ch = 0; ch < kPairChunks; ++ch) {
+                const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
+                // pass 1, branch-free: the pairs the box does not reject, in order
+                int32_t n = b;
+                for (int32_t pr = b; pr < e; ++pr) {
+                    // with body ids far apart in space (shuffled numbering) the box is a cache miss
+                    if (pr + kBoxPrefetch < e)
+                        __builtin_prefetch(&box[cand_body[pr + kBoxPrefetch]]);
+                    in_contact[n] = pr;
+                    n += !box_rejects(box[cand_body[pr]], x[cand_node[pr]]);
+                }
+                // pass 2: locate and law of those; the pairs in contact, compacted in place
+                int32_t nc = b;
+                for (int32_t k = b; k < n; ++k) {
+                    const int32_t pr = in_contact[k];
+                    if (evaluate_pair(m, ccs, x, v, xv, vv, dt, pr, out[pr]) >= 0)
+                        in_contact[nc++] = pr;
+                }
+                chunk_count[ch] = nc - b;
             }
-            // pass 2: locate and law of those; the pairs in contact, compacted in place
-            int32_t nc = b;
-            for (int32_t k = b; k < n; ++k) {
-                const int32_t pr = in_contact[k];
-                if (evaluate_pair(m, ccs, x, v, xv, vv, dt, pr, out[pr]) >= 0)
-                    in_contact[nc++] = pr;
-            }
-            chunk_count[ch] = nc - b;
         }
     }
 
