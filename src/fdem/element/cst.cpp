@@ -4,7 +4,9 @@
 // one body, so the material constants are hoisted out of it and fixed bodies never enter it;
 // the viscous branch is a template parameter decided per chunk. Chunks are colored so that a
 // color's chunks share no node and can scatter their forces concurrently without atomics, in an
-// order that does not depend on the thread count.
+// order that does not depend on the thread count. On CPUs with AVX-512, elastic (non-viscous)
+// triangles go to the kernel in element/cst_simd.cpp (8 triangles per instruction, bitwise the
+// same results); viscous ones and other CPUs use the loops below.
 #include "element/cst.hpp"
 
 #include <omp.h>
