@@ -194,6 +194,36 @@ TEST(NarrowReject, GuardsGiveInfiniteBoxes) {
     EXPECT_FALSE(box_rejects(ok, {std::nan(""), 2}));
 }
 
+// box_rejects() (SSE2 pairs where available) answers as the scalar reference formula, also for
+// NaN, infinite and empty boxes, ties and points on the box faces
+TEST(NarrowReject, VectorTestMatchesScalarFormula) {
+    std::mt19937_64 rng(777);
+    std::uniform_real_distribution<Real> u01(0, 1);
+    const Real inf = std::numeric_limits<Real>::infinity(), nan = std::nan("");
+    const Real specials[] = {0.0, -0.0, 1.0, -1.0, 1e-300, 1e300, inf, -inf, nan};
+    auto pick = [&](Real lo, Real hi) {
+        const uint64_t r = rng() % 16;
+        if (r < 3) return specials[rng() % 9];
+        if (r < 5) return u01(rng) < 0.5 ? lo : hi;  // on a face
+        return lo + (hi - lo) * (3 * u01(rng) - 1);
+    };
+    int64_t rejected = 0, kept = 0;
+    for (int k = 0; k < 200000; ++k) {
+        const Real s = std::pow(10.0, -6 + 12 * u01(rng));
+        BodyBox b{{s * (u01(rng) - 0.5), s * (u01(rng) - 0.5)}, {}};
+        b.hi = {b.lo.x + s * u01(rng), b.lo.y + s * u01(rng)};
+        if (rng() % 8 == 0) b.lo.x = specials[rng() % 9];
+        if (rng() % 8 == 0) b.hi.y = specials[rng() % 9];
+        const Vec2 p{pick(b.lo.x, b.hi.x), pick(b.lo.y, b.hi.y)};
+        const bool r = box_rejects(b, p);
+        ASSERT_EQ(r, box_rejects_scalar(b, p)) << b.lo.x << " " << b.lo.y << " " << b.hi.x << " "
+                                               << b.hi.y << " | " << p.x << " " << p.y;
+        (r ? rejected : kept) += 1;
+    }
+    EXPECT_GT(rejected, 20000);
+    EXPECT_GT(kept, 20000);
+}
+
 // x, v, f and the energies of two runs are bitwise equal
 void expect_same_state(const State& a, const State& b) {
     ASSERT_EQ(a.x.size(), b.x.size());
