@@ -4,6 +4,8 @@
 // hash (a speed-up that changes it must say so, style guide §4.9). Args: {triangles, threads}.
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
 
 #include "bench_common.hpp"
 #include "bench_phases.hpp"
@@ -61,6 +63,58 @@ BENCHMARK(BM_StepNoEnergy)
         bench::tri_sizes(b, 1);
         bench::tri_sizes(b, 2);
     }) -> Unit(benchmark::kMicrosecond);
+
+// BM_Step on the block with a damping ratio of 0.05 (theory eq. 2.6; as most user scenes, e.g.
+// examples/03_contact_slide): every triangle is viscous (tri_eta > 0), so the element pass also
+// computes the rate of deformation and the viscous power. Args: {triangles, threads}.
+const Model& cached_viscous_block(int64_t num_tris) {
+    static std::map<int64_t, std::unique_ptr<Model>> cache;
+    auto& slot = cache[num_tris];
+    if (!slot) {
+        if (num_tris >= (1 << 20)) cache.clear();
+        auto& fresh = cache[num_tris];
+        scenes::BlockOptions o;
+        o.num_tris = num_tris;
+        o.gravity = o.clamp = true;
+        fresh = std::make_unique<Model>(scenes::make_block(o));
+        Model& m = *fresh;
+        Material& mat = m.materials[0];
+        mat.damping_ratio = 0.05;
+        // element viscosity eta + 2 h xi sqrt(E rho), h = smallest altitude (theory eq. 2.6), as
+        // finalize_model computes it
+        for (TriId t = 0; t < m.num_tris(); ++t) {
+            const auto& n = m.tri_nodes[t];
+            const Vec2 X0 = m.node_x0[n[0]], X1 = m.node_x0[n[1]], X2 = m.node_x0[n[2]];
+            const Real lmax = std::max({norm(X1 - X0), norm(X2 - X1), norm(X0 - X2)});
+            const Real h = 2.0 * m.tri_area0[t] / lmax;
+            m.tri_eta[t] = mat.viscosity + 2.0 * h * mat.damping_ratio *
+                                               std::sqrt(mat.youngs_modulus * mat.density);
+        }
+        return m;
+    }
+    return *slot;
+}
+
+void BM_StepViscous(benchmark::State& st) {
+    omp_set_num_threads(static_cast<int>(st.range(1)));
+    const Model& m = cached_viscous_block(st.range(0));
+    State s = make_state(m, 0.9 * stable_time_step(m));
+    step(m, s);
+    s.need_energy = st.range(2) != 0;
+    for (auto _ : st)
+        step(m, s);
+    st.SetItemsProcessed(st.iterations() * m.num_tris());
+    st.counters["omp_threads"] = static_cast<double>(st.range(1));
+    st.counters["energy"] = static_cast<double>(st.range(2));
+    st.counters["dt"] = s.dt;
+    st.counters["steps"] = static_cast<double>(s.step);
+    st.counters["hash32"] = static_cast<double>(scenes::state_hash(s) & 0xffffffffu);
+}
+
+// {triangles, threads, energy every step}: 16k (in cache) and 1M, 1 thread
+BENCHMARK(BM_StepViscous)
+    ->ArgsProduct({{1 << 14, 1 << 20}, {1}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
 
 // The whole step on a contact scene, dt = 0.5 x stable (contact bound included). Besides
 // items/s = triangle-steps/s, dt and drift as in BM_Step: the per-phase breakdown in CPU seconds

@@ -4,9 +4,9 @@
 // one body, so the material constants are hoisted out of it and fixed bodies never enter it;
 // the viscous branch is a template parameter decided per chunk. Chunks are colored so that a
 // color's chunks share no node and can scatter their forces concurrently without atomics, in an
-// order that does not depend on the thread count. On CPUs with AVX-512, elastic (non-viscous)
-// triangles go to the kernel in element/cst_simd.cpp (8 triangles per instruction, bitwise the
-// same results); viscous ones and other CPUs use the loops below.
+// order that does not depend on the thread count. On CPUs with AVX-512, the CST triangles
+// (elastic and viscous) go to the kernel in element/cst_simd.cpp (8 triangles per instruction,
+// bitwise the same results); other CPUs (and CstKernel::Portable) use the loops below.
 #include "element/cst.hpp"
 
 #include <omp.h>
@@ -171,13 +171,15 @@ void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId
     // tri_eta = eta + 2 h xi sqrt(E rho) (theory eq. 2.6) is > 0 exactly when the material has a
     // viscosity or a damping ratio: decided per material, without reading tri_eta
     const bool viscous = mt.viscosity > 0 || mt.damping_ratio > 0;
-    if (viscous && with_energy) {
+    if (g_kernel == CstKernel::Auto && detail::cst_avx512_supported()) {
+        // 8 triangles per instruction, bitwise the same forces, energy and viscous power
+        // (element/cst_simd.cpp)
+        detail::cst_range_avx512(m, x, v, f, begin, end, mt.lambda, mt.mu, viscous, with_energy,
+                                 out);
+    } else if (viscous && with_energy) {
         element_range<true, true>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
     } else if (viscous) {
         element_range<true, false>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
-    } else if (g_kernel == CstKernel::Auto && detail::cst_avx512_supported()) {
-        // 8 triangles per instruction, bitwise the same forces and energy (element/cst_simd.cpp)
-        detail::elastic_range_avx512(m, x, f, begin, end, mt.lambda, mt.mu, with_energy, out);
     } else if (with_energy) {
         // the blocked kernel measured no faster here: the std::log and the energy sum dominate
         element_range<false, true>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);

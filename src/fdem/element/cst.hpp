@@ -35,15 +35,15 @@ ElementPass add_internal_forces(const Model& m, State& s);
 /// count. Called by finalize_model().
 ElementSchedule build_element_schedule(const Model& m);
 
-/// Kernel for the elastic (non-viscous) triangles: Auto = the AVX-512 kernel when the CPU has
+/// Kernel for the CST triangles (elastic and viscous): Auto = the AVX-512 kernel when the CPU has
 /// it (element/cst_simd.cpp), else the portable one; Portable = always the portable one. Both
-/// give bitwise the same forces, smallest J and strain energy; Portable exists so that tests can
-/// compare them (tests/unit/element/cst_simd_test.cpp). Process-wide; do not change it while a
-/// pass runs.
+/// give bitwise the same forces, smallest J, strain energy and viscous power; Portable exists so
+/// that tests can compare them (tests/unit/element/cst_simd_test.cpp). Process-wide; do not change
+/// it while a pass runs.
 enum class CstKernel { Auto, Portable };
 void set_cst_kernel(CstKernel k);
 
-/// The kernel the next pass uses for elastic triangles: "avx512" or "portable".
+/// The kernel the next pass uses for CST triangles: "avx512" or "portable".
 const char* cst_kernel_name();
 
 /// Deformation gradient F = Ds Dm^-1 of triangle t (theory eq. 3.1).

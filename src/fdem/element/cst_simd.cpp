@@ -50,6 +50,20 @@ struct Consts {
     __m512d mu, half_lambda, one, half;
 };
 
+// -a, as the unary minus of the portable kernel: flips the sign bit only (0 - a would turn +0
+// into +0 instead of -0). AVX-512F has no floating-point xor, hence the integer one.
+FDEM_AVX512 inline __m512d neg(__m512d a) {
+    return _mm512_castsi512_pd(_mm512_xor_si512(
+        _mm512_castpd_si512(a), _mm512_set1_epi64(static_cast<int64_t>(0x8000000000000000ull))));
+}
+
+// Viscous inputs of a group (kViscous): node velocities, and eta and A0 of the 8 triangles.
+struct ViscousIn {
+    const double* vd;
+    const double* eta;
+    const double* area0;
+};
+
 // x and y of corner k (0, 1, 2) of the 8 triangles whose node ids are q[3 i + k].
 FDEM_AVX512 inline void load_corner(const double* xd, const int32_t* q, int k, __m512d& X,
                                     __m512d& Y) {
@@ -86,10 +100,12 @@ FDEM_AVX512 inline void add_force(double* fd, int32_t node, const double* v) {
 }
 
 // Forces of 8 triangles with node ids q[0..23] and Dm^-1 dm[0..31] (8 Mat2, row-major): the
-// forces of corner k of lane i go to fo[16 k + 2 i], tr C to trc[i] (kEnergy); returns J.
-template <bool kEnergy>
+// forces of corner k of lane i go to fo[16 k + 2 i], tr C to trc[i] (kEnergy), the viscous power
+// J A0 eta D:D to pw[i] (kViscous; meaningful where eta > 0); returns J.
+template <bool kEnergy, bool kViscous>
 FDEM_AVX512 inline __m512d group(const double* xd, const int32_t* q, const double* dm,
-                                 const Consts& c, double* fo, double* trc) {
+                                 const Consts& c, const ViscousIn& vi, double* fo, double* trc,
+                                 double* pw) {
     __m512d xa, ya, xb, yb, xc, yc;
     load_corner(xd, q, 0, xa, ya);
     load_corner(xd, q, 1, xb, yb);
@@ -127,9 +143,45 @@ FDEM_AVX512 inline __m512d group(const double* xd, const int32_t* q, const doubl
     const __m512d Byy = _mm512_add_pd(_mm512_mul_pd(Fyx, Fyx), _mm512_mul_pd(Fyy, Fyy));
     const __m512d a = _mm512_div_pd(c.mu, J);
     const __m512d p = _mm512_mul_pd(c.half_lambda, _mm512_sub_pd(J, _mm512_div_pd(c.one, J)));
-    const __m512d sxx = _mm512_add_pd(_mm512_mul_pd(a, _mm512_sub_pd(Bxx, c.one)), p);
-    const __m512d sxy = _mm512_mul_pd(a, Bxy);
-    const __m512d syy = _mm512_add_pd(_mm512_mul_pd(a, _mm512_sub_pd(Byy, c.one)), p);
+    __m512d sxx = _mm512_add_pd(_mm512_mul_pd(a, _mm512_sub_pd(Bxx, c.one)), p);
+    __m512d sxy = _mm512_mul_pd(a, Bxy);
+    __m512d syy = _mm512_add_pd(_mm512_mul_pd(a, _mm512_sub_pd(Byy, c.one)), p);
+
+    if constexpr (kViscous) {
+        // viscous stress eta D, D = sym(L), L = [v_b - v_a, v_c - v_a] Ds^-1 (theory eq. 2.4):
+        // rate_of_deformation (element/cst.hpp) with inverse (math.hpp), operation by operation.
+        // Ds = columns(e1, e2): Ds.xx = e1x, Ds.xy = e2x, Ds.yx = e1y, Ds.yy = e2y
+        __m512d vxa, vya, vxb, vyb, vxc, vyc;
+        load_corner(vi.vd, q, 0, vxa, vya);
+        load_corner(vi.vd, q, 1, vxb, vyb);
+        load_corner(vi.vd, q, 2, vxc, vyc);
+        const __m512d inv =
+            _mm512_div_pd(c.one, _mm512_sub_pd(_mm512_mul_pd(e1x, e2y), _mm512_mul_pd(e2x, e1y)));
+        const __m512d ixx = _mm512_mul_pd(e2y, inv), ixy = _mm512_mul_pd(neg(e2x), inv);
+        const __m512d iyx = _mm512_mul_pd(neg(e1y), inv), iyy = _mm512_mul_pd(e1x, inv);
+        const __m512d ubx = _mm512_sub_pd(vxb, vxa), uby = _mm512_sub_pd(vyb, vya);
+        const __m512d ucx = _mm512_sub_pd(vxc, vxa), ucy = _mm512_sub_pd(vyc, vya);
+        // L = columns(u_b, u_c) * Ds^-1 (Mat2 operator*)
+        const __m512d Lxx = _mm512_add_pd(_mm512_mul_pd(ubx, ixx), _mm512_mul_pd(ucx, iyx));
+        const __m512d Lxy = _mm512_add_pd(_mm512_mul_pd(ubx, ixy), _mm512_mul_pd(ucx, iyy));
+        const __m512d Lyx = _mm512_add_pd(_mm512_mul_pd(uby, ixx), _mm512_mul_pd(ucy, iyx));
+        const __m512d Lyy = _mm512_add_pd(_mm512_mul_pd(uby, ixy), _mm512_mul_pd(ucy, iyy));
+        const __m512d Dxy = _mm512_mul_pd(c.half, _mm512_add_pd(Lxy, Lyx));
+        // sigma + eta D only in the lanes with eta > 0 (the portable branch); sigma.yx + eta D.yx
+        // has the bits of sigma.xy + eta D.xy, so sxy serves both
+        const __m512d eta = _mm512_loadu_pd(vi.eta);
+        const __mmask8 visc = _mm512_cmp_pd_mask(eta, _mm512_setzero_pd(), _CMP_GT_OQ);
+        sxx = _mm512_mask_add_pd(sxx, visc, sxx, _mm512_mul_pd(eta, Lxx));
+        sxy = _mm512_mask_add_pd(sxy, visc, sxy, _mm512_mul_pd(eta, Dxy));
+        syy = _mm512_mask_add_pd(syy, visc, syy, _mm512_mul_pd(eta, Lyy));
+        // J A0 eta ddot(D, D), ddot summed xx, xy, yx, yy (math.hpp)
+        const __m512d dd = _mm512_add_pd(
+            _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(Lxx, Lxx), _mm512_mul_pd(Dxy, Dxy)),
+                          _mm512_mul_pd(Dxy, Dxy)),
+            _mm512_mul_pd(Lyy, Lyy));
+        const __m512d jae = _mm512_mul_pd(_mm512_mul_pd(J, _mm512_loadu_pd(vi.area0)), eta);
+        _mm512_store_pd(pw, _mm512_mul_pd(jae, dd));
+    }
 
     // f_i = 1/2 sigma n_i, n_i the scaled outward normal of the edge opposite i (theory eq. 3.3)
     const __m512d nx[3] = {_mm512_sub_pd(yc, yb), _mm512_sub_pd(ya, yc), _mm512_sub_pd(yb, ya)};
@@ -152,12 +204,14 @@ FDEM_AVX512 inline __m512d group(const double* xd, const int32_t* q, const doubl
     return J;
 }
 
-template <bool kEnergy>
-FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriId end, Real lambda,
-                       Real mu, ElementPass& out) {
+template <bool kEnergy, bool kViscous>
+FDEM_AVX512 void range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin,
+                       TriId end, Real lambda, Real mu, ElementPass& out) {
     const auto* tn = reinterpret_cast<const int32_t*>(m.tri_nodes.data());
     const auto* dmd = reinterpret_cast<const double*>(m.tri_dm_inv.data());
     const Real* area0 = m.tri_area0.data();
+    const Real* eta = m.tri_eta.data();
+    const auto* vd = reinterpret_cast<const double*>(v);
     const auto* xd = reinterpret_cast<const double*>(x);
     auto* fd = reinterpret_cast<double*>(f);
     static_assert(sizeof(m.tri_nodes[0]) == 3 * sizeof(int32_t) &&
@@ -177,7 +231,8 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriI
     alignas(64) double lnj[kEnergy ? kBlock : 1], wa[kEnergy ? kBlock : 1];
     alignas(64) int32_t pad_q[3 * kLanes];
     alignas(64) double pad_dm[4 * kLanes];
-    Real energy = 0;
+    alignas(64) double pad_eta[kLanes], pad_area[kLanes], pw[kLanes];
+    Real energy = 0, power = 0;
     Real min_j = out.min_jacobian;
     TriId min_t = out.min_jacobian_tri;
 
@@ -187,6 +242,7 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriI
             const int n = static_cast<int>(std::min<TriId>(kLanes, b1 - t0));
             const int32_t* q = tn + 3 * static_cast<ptrdiff_t>(t0);
             const double* dm = dmd + 4 * static_cast<ptrdiff_t>(t0);
+            ViscousIn vi{vd, eta + t0, area0 + t0};
             if (n < kLanes) {
                 // last group of the range: the missing lanes repeat its last triangle (computed,
                 // unused)
@@ -194,12 +250,19 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriI
                     const int src = std::min(i, n - 1);
                     std::copy_n(q + 3 * src, 3, pad_q + 3 * i);
                     std::copy_n(dm + 4 * src, 4, pad_dm + 4 * i);
+                    if constexpr (kViscous) {
+                        pad_eta[i] = eta[t0 + src];
+                        pad_area[i] = area0[t0 + src];
+                    }
                 }
                 q = pad_q;
                 dm = pad_dm;
+                vi.eta = pad_eta;
+                vi.area0 = pad_area;
             }
             double* jg = kEnergy ? jac + (t0 - b0) : jac;
-            const __m512d J = group<kEnergy>(xd, q, dm, c, fo, kEnergy ? trc + (t0 - b0) : trc);
+            const __m512d J =
+                group<kEnergy, kViscous>(xd, q, dm, c, vi, fo, kEnergy ? trc + (t0 - b0) : trc, pw);
             _mm512_store_pd(jg, J);
             const __mmask8 positive = _mm512_cmp_pd_mask(J, _mm512_setzero_pd(), _CMP_GT_OQ);
             if (n == kLanes && positive == 0xff) {
@@ -216,6 +279,11 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriI
                     add_force(fd, q[3 * i + 1], fo + 16 + 2 * i);
                     add_force(fd, q[3 * i + 2], fo + 32 + 2 * i);
                 }
+                if constexpr (kViscous) {
+                    for (int i = 0; i < kLanes; ++i) {  // in triangle order, as the portable sum
+                        if (eta[t0 + i] > 0) power += pw[i];
+                    }
+                }
                 continue;
             }
             // as the portable kernel, triangle by triangle
@@ -226,6 +294,9 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriI
                     min_t = t0 + i;
                 }
                 if (!(Ji > 0)) continue;  // inverted: reported by the caller, no force
+                if constexpr (kViscous) {
+                    if (eta[t0 + i] > 0) power += pw[i];
+                }
                 add_force(fd, q[3 * i], fo + 2 * i);
                 add_force(fd, q[3 * i + 1], fo + 16 + 2 * i);
                 add_force(fd, q[3 * i + 2], fo + 32 + 2 * i);
@@ -256,8 +327,10 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriI
             }
         }
     }
-    if constexpr (kEnergy) {
-        out.strain_energy += energy;
+    if constexpr (kEnergy) out.strain_energy += energy;
+    if constexpr (kViscous) {
+        out.viscous_power += power;  // summed with or without the energy, as element_range
+    } else if constexpr (kEnergy) {
         out.viscous_power += 0.0;  // as element_range<false, true>
     }
     out.min_jacobian = min_j;
@@ -266,12 +339,16 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriI
 
 }  // namespace
 
-void elastic_range_avx512(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriId end,
-                          Real lambda, Real mu, bool with_energy, ElementPass& out) {
-    if (with_energy) {
-        range<true>(m, x, f, begin, end, lambda, mu, out);
+void cst_range_avx512(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
+                      Real lambda, Real mu, bool viscous, bool with_energy, ElementPass& out) {
+    if (viscous && with_energy) {
+        range<true, true>(m, x, v, f, begin, end, lambda, mu, out);
+    } else if (viscous) {
+        range<false, true>(m, x, v, f, begin, end, lambda, mu, out);
+    } else if (with_energy) {
+        range<true, false>(m, x, v, f, begin, end, lambda, mu, out);
     } else {
-        range<false>(m, x, f, begin, end, lambda, mu, out);
+        range<false, false>(m, x, v, f, begin, end, lambda, mu, out);
     }
 }
 

@@ -1,4 +1,4 @@
-// SIMD kernel of the elastic constant-strain triangle (docs/theory.md §2-3, docs/performance.md).
+// SIMD kernel of the constant-strain triangle (docs/theory.md §2-3, docs/performance.md).
 // Private to element/cst.cpp, which dispatches to it.
 #pragma once
 
@@ -9,11 +9,13 @@ namespace fdem::detail {
 /// true when the CPU runs the AVX-512 kernel below (checked once, __builtin_cpu_supports).
 bool cst_avx512_supported();
 
-/// Elastic (eta = 0) triangles [begin, end) with Lame constants (lambda, mu), 8 triangles per
-/// AVX-512 instruction: internal forces added to f, smallest det F, and (with_energy) the strain
-/// energy added to out. Same expressions in the same order as the portable kernel, so f, the
-/// energy and the smallest J are bitwise the same. Only call when cst_avx512_supported().
-void elastic_range_avx512(const Model& m, const Vec2* x, Vec2* f, TriId begin, TriId end,
-                          Real lambda, Real mu, bool with_energy, ElementPass& out);
+/// Triangles [begin, end) of one material with Lame constants (lambda, mu), 8 triangles per
+/// AVX-512 instruction: internal forces added to f, smallest det F, (with_energy) the strain
+/// energy and (viscous: the material may have tri_eta > 0) the viscous stress eta D from the
+/// velocities v and its power added to out. Same expressions in the same order as the portable
+/// kernel (element_range, elastic_range), so f, the energy, the power and the smallest J are
+/// bitwise the same. Only call when cst_avx512_supported().
+void cst_range_avx512(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
+                      Real lambda, Real mu, bool viscous, bool with_energy, ElementPass& out);
 
 }  // namespace fdem::detail

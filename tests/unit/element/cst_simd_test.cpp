@@ -39,12 +39,13 @@ struct Pass {
     ElementPass p;
 };
 
-// serial pass over all triangles with the given kernel
-Pass serial_pass(const Model& m, const std::vector<Vec2>& x, CstKernel k) {
+// serial pass over all triangles with the given kernel (velocities v, zero when empty)
+Pass serial_pass(const Model& m, const std::vector<Vec2>& x, CstKernel k,
+                 const std::vector<Vec2>& v_in = {}) {
     set_cst_kernel(k);
     Pass r;
     r.f.assign(x.size(), Vec2{});
-    const std::vector<Vec2> v(x.size());
+    const std::vector<Vec2> v = v_in.empty() ? std::vector<Vec2>(x.size()) : v_in;
     r.p = add_internal_forces(m, x.data(), v.data(), r.f.data(), 0, m.num_tris());
     return r;
 }
@@ -121,6 +122,73 @@ TEST(CstSimd, InvertedTrianglesAndEveryRangeEndMatch) {
     expect_same_bits(all, serial_pass(m, x, CstKernel::Auto));
 }
 
+// seeded random nodal velocities up to `amplitude` [m/s] in each component
+std::vector<Vec2> random_velocities(size_t n, Real amplitude, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<Real> u(-1.0, 1.0);
+    std::vector<Vec2> v(n);
+    for (Vec2& p : v)
+        p = amplitude * Vec2{u(rng), u(rng)};
+    return v;
+}
+
+// a block of a viscous material (viscosity > 0, so every chunk takes the viscous path) whose
+// tri_eta is 0 in some triangles (theory eq. 2.4 applies only where eta > 0): mixed groups, a
+// run of 16 (two whole groups) without viscosity, and one with eta > 0 everywhere
+Model viscous_block(int64_t num_tris) {
+    scenes::BlockOptions o;
+    o.num_tris = num_tris;
+    o.viscosity = 500.0;
+    Model m = scenes::make_block(o);
+    for (TriId t = 0; t < m.num_tris(); ++t) {
+        if (t % 5 == 0 || t % 7 == 3 || (t >= 96 && t < 112)) m.tri_eta[t] = 0;
+        if (t % 11 == 4) m.tri_eta[t] = 1e-3 * (1 + t % 3);  // small but > 0
+    }
+    return m;
+}
+
+TEST(CstSimd, ViscousForcesEnergyPowerAndSmallestJMatchThePortableKernel) {
+    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    KernelGuard guard;
+    const Model m = viscous_block(2738);  // last group partial
+    ASSERT_NE(m.num_tris() % 8, 0);
+    for (uint32_t seed : {1u, 2u, 3u}) {
+        const std::vector<Vec2> x = perturbed(m, 0.1, seed);
+        const std::vector<Vec2> v = random_velocities(x.size(), 0.5, seed + 100);
+        const Pass a = serial_pass(m, x, CstKernel::Portable, v);
+        const Pass b = serial_pass(m, x, CstKernel::Auto, v);
+        expect_same_bits(a, b);
+        EXPECT_GT(a.p.viscous_power, 0);
+        EXPECT_GT(a.p.min_jacobian, 0);
+        // the viscous stress does change the forces (else the comparison would prove little)
+        const Pass e = serial_pass(m, x, CstKernel::Portable);
+        EXPECT_NE(bits(a.f[m.tri_nodes[1][0]].x), bits(e.f[m.tri_nodes[1][0]].x));
+    }
+}
+
+TEST(CstSimd, ViscousInvertedTrianglesAndEveryRangeEndMatch) {
+    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    KernelGuard guard;
+    const Model m = viscous_block(800);
+    const std::vector<Vec2> x = perturbed(m, 0.6, 11);
+    const std::vector<Vec2> v = random_velocities(x.size(), 0.5, 12);
+    const Pass all = serial_pass(m, x, CstKernel::Portable, v);
+    ASSERT_LT(all.p.min_jacobian, 0);  // the scene does hold inverted triangles
+    ASSERT_GT(all.p.viscous_power, 0);
+    for (TriId begin : {0, 5, 93}) {
+        for (TriId end = begin + 1; end <= begin + 40; ++end) {
+            Pass r[2];
+            for (int k = 0; k < 2; ++k) {
+                set_cst_kernel(k == 0 ? CstKernel::Portable : CstKernel::Auto);
+                r[k].f.assign(x.size(), Vec2{});
+                r[k].p = add_internal_forces(m, x.data(), v.data(), r[k].f.data(), begin, end);
+            }
+            expect_same_bits(r[0], r[1]);
+        }
+    }
+    expect_same_bits(all, serial_pass(m, x, CstKernel::Auto, v));
+}
+
 // whole steps (parallel chunked pass, node update) give the same state hash and energies;
 // `strain` > 0 moves every node by up to that much (deterministic) so every triangle is strained
 void expect_same_run(const Model& m, int steps, int threads, Real strain = 0) {
@@ -143,6 +211,7 @@ void expect_same_run(const Model& m, int steps, int threads, Real strain = 0) {
     EXPECT_EQ(hash[0], hash[1]);
     EXPECT_EQ(bits(e[0].strain), bits(e[1].strain));
     EXPECT_EQ(bits(e[0].kinetic), bits(e[1].kinetic));
+    EXPECT_EQ(bits(e[0].dissipated_viscous), bits(e[1].dissipated_viscous));
     EXPECT_GT(e[0].strain, 0);
 }
 
@@ -151,6 +220,17 @@ TEST(CstSimd, BlockStepsAreBitwiseTheSame) {
     scenes::BlockOptions o;
     o.num_tris = 20000;  // parallel pass (> 32 chunks)
     o.gravity = o.clamp = true;
+    const Model m = scenes::make_block(o);
+    expect_same_run(m, 30, 1);
+    expect_same_run(m, 30, 2);
+}
+
+TEST(CstSimd, ViscousBlockStepsAreBitwiseTheSame) {
+    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    scenes::BlockOptions o;
+    o.num_tris = 20000;  // parallel pass (> 32 chunks)
+    o.gravity = o.clamp = true;
+    o.viscosity = 2000.0;
     const Model m = scenes::make_block(o);
     expect_same_run(m, 30, 1);
     expect_same_run(m, 30, 2);
