@@ -147,6 +147,16 @@ struct ContactModel {
     std::vector<TriId> sub_parent;
     std::vector<int32_t> body_sub_begin;
 
+    /// Distinct contact nodes of each body's sub-triangles, for the narrow phase's per-step body
+    /// boxes (contact.cpp body_boxes()): those of body b are body_cnode[body_cnode_begin[b] ..
+    /// body_cnode_begin[b+1]), its body_cnode_nreal[b] real node ids first (ascending), then its
+    /// virtual ones (contact ids, ascending). sub_local[t] = the positions of sub_tri[t]'s
+    /// vertices in its body's list (0 = body_cnode_begin[b]). build_body_contact_nodes().
+    std::vector<NodeId> body_cnode;
+    std::vector<int32_t> body_cnode_begin;
+    std::vector<int32_t> body_cnode_nreal;
+    std::vector<std::array<int32_t, 3>> sub_local;
+
     /// Baseline B only (ContactAlgorithm::LegacyBoundary): phi_B per contactor sub-triangle,
     /// parallel to sub_tri (build_legacy_boundary_field(), docs/theory.md §7.4); empty otherwise.
     std::vector<LegacyBoundaryTri> sub_legacy_b;

@@ -166,35 +166,142 @@ namespace {
 // NaN or infinite positions fail the guards (infinite box); a NaN node never gives d > 0.
 }  // namespace
 
+// Cheaper evaluation (round 5): the box is the same function of the same values when the bounds
+// run over the body's distinct contact nodes (ContactModel::body_cnode, each read once, real ones
+// from x and virtual ones from xv without a branch) and the areas over sub_local indices into
+// those positions: every vertex of a sub-triangle is one of those nodes and vice versa, and the
+// areas are computed from the same vertex values in the same order. Only the order of the
+// min/max chains changes, and it does not matter: min and max of a set are exact; NaN anywhere
+// makes an area NaN (infinite box either way); where the order could pick -0 or +0 the box is
+// still the same (lo = +-0 - delta = -delta with delta > 0 on a finite box, the extents and
+// |coordinates| do not see the sign; both extents zero fails the W^2 guard).
+namespace {
+
+constexpr int32_t kBoxLocalNodes = 32;  // bodies with more distinct nodes take the reference
+
+inline BodyBox finish_box(Real lx, Real ly, Real hx, Real hy, Real amin, bool nonzero) {
+    constexpr Real inf = std::numeric_limits<Real>::infinity();
+    const Real w = std::max(hx - lx, hy - ly), w2 = w * w;
+    const Real c = std::max({std::abs(lx), std::abs(hx), std::abs(ly), std::abs(hy)});
+    if (nonzero && w2 >= kBoxMinW2 && w2 <= kBoxMaxW2 && amin >= kBoxAspect * w2 &&
+        w >= kBoxScale * c) {
+        const Real delta = kBoxMargin * w;
+        return BodyBox{{lx - delta, ly - delta}, {hx + delta, hy + delta}};
+    }
+    return BodyBox{{-inf, -inf}, {inf, inf}};
+}
+
+// the specification: bounds and areas over every sub-triangle's vertices in turn
+BodyBox reference_box(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyId b) {
+    constexpr Real inf = std::numeric_limits<Real>::infinity();
+    Real lx = inf, ly = inf, hx = -inf, hy = -inf, amin = inf;
+    bool nonzero = true;
+    for (int32_t t = cm.body_sub_begin[b]; t < cm.body_sub_begin[b + 1]; ++t) {
+        const auto& q = cm.sub_tri[t];
+        const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
+        // bounds of the sub-triangle first: one min/max per sub-triangle on the chains
+        lx = std::min(lx, std::min(p[0].x, std::min(p[1].x, p[2].x)));
+        hx = std::max(hx, std::max(p[0].x, std::max(p[1].x, p[2].x)));
+        ly = std::min(ly, std::min(p[0].y, std::min(p[1].y, p[2].y)));
+        hy = std::max(hy, std::max(p[0].y, std::max(p[1].y, p[2].y)));
+        const Real a2 = std::abs(cross(p[1] - p[0], p[2] - p[0]));  // as in evaluate_pair
+        nonzero &= a2 > 0;                                          // false for NaN
+        amin = std::min(amin, a2);
+    }
+    return finish_box(lx, ly, hx, hy, amin, nonzero);
+}
+
+}  // namespace
+
+void body_boxes_reference(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
+                          int32_t nbodies) {
+    for (BodyId b = 0; b < nbodies; ++b)
+        box[b] = reference_box(cm, x, xv, b);
+}
+
 void body_boxes(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
                 int32_t nbodies) {
     constexpr Real inf = std::numeric_limits<Real>::infinity();
+    const bool compact = cm.body_cnode_begin.size() == static_cast<size_t>(nbodies) + 1 &&
+                         cm.sub_local.size() == cm.sub_tri.size();
+    const NodeId* cnode = cm.body_cnode.data();
+    const NodeId nreal_nodes = cm.num_real_nodes;
     // bodies are independent: shared among the threads when called in a parallel region
 #pragma omp for schedule(static)
     for (BodyId b = 0; b < nbodies; ++b) {
-        Real lx = inf, ly = inf, hx = -inf, hy = -inf, amin = inf;
-        bool nonzero = true;
+        const int32_t nb = compact ? cm.body_cnode_begin[b] : 0;
+        const int32_t nn = compact ? cm.body_cnode_begin[b + 1] - nb : kBoxLocalNodes + 1;
+        if (nn > kBoxLocalNodes) {
+            box[b] = reference_box(cm, x, xv, b);
+            continue;
+        }
+        const int32_t nr = cm.body_cnode_nreal[b];
+        Real lx, ly, hx, hy, amin;
+        bool nonzero;
+#ifdef __SSE2__
+        // (x, y) lanes: one min and one max per node; a NaN lane may give another bound than
+        // std::min, but a NaN position makes an area NaN and the box infinite either way
+        __m128d p[kBoxLocalNodes];  // no initialisation
+        __m128d lo = _mm_set1_pd(inf), hi = _mm_set1_pd(-inf);
+        for (int32_t k = 0; k < nr; ++k) {
+            p[k] = _mm_loadu_pd(&x[cnode[nb + k]].x);
+            lo = _mm_min_pd(lo, p[k]);
+            hi = _mm_max_pd(hi, p[k]);
+        }
+        for (int32_t k = nr; k < nn; ++k) {
+            p[k] = _mm_loadu_pd(&xv[cnode[nb + k] - nreal_nodes].x);
+            lo = _mm_min_pd(lo, p[k]);
+            hi = _mm_max_pd(hi, p[k]);
+        }
+        const __m128d abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
+        __m128d am = _mm_set_sd(inf), ok = _mm_castsi128_pd(_mm_set1_epi64x(-1));
         for (int32_t t = cm.body_sub_begin[b]; t < cm.body_sub_begin[b + 1]; ++t) {
-            const auto& q = cm.sub_tri[t];
-            const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
-            // bounds of the sub-triangle first: one min/max per sub-triangle on the chains
-            lx = std::min(lx, std::min(p[0].x, std::min(p[1].x, p[2].x)));
-            hx = std::max(hx, std::max(p[0].x, std::max(p[1].x, p[2].x)));
-            ly = std::min(ly, std::min(p[0].y, std::min(p[1].y, p[2].y)));
-            hy = std::max(hy, std::max(p[0].y, std::max(p[1].y, p[2].y)));
-            const Real a2 = std::abs(cross(p[1] - p[0], p[2] - p[0]));  // as in evaluate_pair
-            nonzero &= a2 > 0;                                          // false for NaN
+            const auto& q = cm.sub_local[t];
+            const __m128d e1 = _mm_sub_pd(p[q[1]], p[q[0]]), e2 = _mm_sub_pd(p[q[2]], p[q[0]]);
+            // (e1.x e2.y, e1.y e2.x), then their difference: cross(p1 - p0, p2 - p0) exactly
+            const __m128d m = _mm_mul_pd(e1, _mm_shuffle_pd(e2, e2, 1));
+            const __m128d a2 = _mm_and_pd(_mm_sub_sd(m, _mm_unpackhi_pd(m, m)), abs_mask);
+            ok = _mm_and_pd(ok, _mm_cmpgt_sd(a2, _mm_setzero_pd()));  // false for NaN
+            am = _mm_min_sd(a2, am);  // a2 < am ? a2 : am = std::min(am, a2)
+        }
+        lx = _mm_cvtsd_f64(lo);
+        ly = _mm_cvtsd_f64(_mm_unpackhi_pd(lo, lo));
+        hx = _mm_cvtsd_f64(hi);
+        hy = _mm_cvtsd_f64(_mm_unpackhi_pd(hi, hi));
+        amin = _mm_cvtsd_f64(am);
+        nonzero = (_mm_movemask_pd(ok) & 1) != 0;
+#else
+        // the positions, read once
+        Real px[kBoxLocalNodes], py[kBoxLocalNodes];
+        lx = inf, ly = inf, hx = -inf, hy = -inf, amin = inf;
+        for (int32_t k = 0; k < nr; ++k) {
+            const Vec2 q = x[cnode[nb + k]];
+            px[k] = q.x;
+            py[k] = q.y;
+        }
+        for (int32_t k = nr; k < nn; ++k) {
+            const Vec2 q = xv[cnode[nb + k] - nreal_nodes];
+            px[k] = q.x;
+            py[k] = q.y;
+        }
+        for (int32_t k = 0; k < nn; ++k) {
+            lx = std::min(lx, px[k]);
+            hx = std::max(hx, px[k]);
+            ly = std::min(ly, py[k]);
+            hy = std::max(hy, py[k]);
+        }
+        nonzero = true;
+        for (int32_t t = cm.body_sub_begin[b]; t < cm.body_sub_begin[b + 1]; ++t) {
+            const auto& q = cm.sub_local[t];
+            // cross(p1 - p0, p2 - p0) of evaluate_pair, the same operations
+            const Real e1x = px[q[1]] - px[q[0]], e1y = py[q[1]] - py[q[0]];
+            const Real e2x = px[q[2]] - px[q[0]], e2y = py[q[2]] - py[q[0]];
+            const Real a2 = std::abs(cross(Vec2{e1x, e1y}, Vec2{e2x, e2y}));
+            nonzero &= a2 > 0;  // false for NaN
             amin = std::min(amin, a2);
         }
-        const Real w = std::max(hx - lx, hy - ly), w2 = w * w;
-        const Real c = std::max({std::abs(lx), std::abs(hx), std::abs(ly), std::abs(hy)});
-        if (nonzero && w2 >= kBoxMinW2 && w2 <= kBoxMaxW2 && amin >= kBoxAspect * w2 &&
-            w >= kBoxScale * c) {
-            const Real delta = kBoxMargin * w;
-            box[b] = BodyBox{{lx - delta, ly - delta}, {hx + delta, hy + delta}};
-        } else {
-            box[b] = BodyBox{{-inf, -inf}, {inf, inf}};
-        }
+#endif
+        box[b] = finish_box(lx, ly, hx, hy, amin, nonzero);
     }
 }
 

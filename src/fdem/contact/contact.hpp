@@ -29,8 +29,21 @@ void update_virtual_nodes(const Model& m, State& s);
 /// Narrow-phase early reject, exposed for tests: box[b] for every body b < nbodies from the
 /// positions of its contactor sub-triangles' vertices (x real, xv virtual), widened by a tiny
 /// margin, or infinite where the reject is not proven exact (contact.cpp has the proof).
+/// Reads the body's distinct contact nodes (ContactModel::body_cnode) once each; a model
+/// without that list (hand-made in tests) or a body with many nodes takes the reference path.
+/// Bitwise the same boxes as body_boxes_reference() (proof at body_boxes(), tested).
 void body_boxes(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
                 int32_t nbodies);
+
+/// The specification of body_boxes(), for tests: the same boxes from the vertices of every
+/// sub-triangle in turn (three position reads per sub-triangle). Serial.
+void body_boxes_reference(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
+                          int32_t nbodies);
+
+/// Fill ContactModel::body_cnode, body_cnode_begin, body_cnode_nreal and sub_local from
+/// sub_tri and body_sub_begin (build_contact_topology() calls it; so can tests that build a
+/// ContactModel by hand).
+void build_body_contact_nodes(ContactModel& cm);
 
 /// true: a target node at p is provably in none of the sub-triangles of the body of box b:
 /// the locate test of the narrow phase would reject every one of them (contact.cpp

@@ -418,6 +418,35 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
 
 }  // namespace
 
+void build_body_contact_nodes(ContactModel& cm) {
+    cm.body_cnode.clear();
+    cm.body_cnode_begin.assign(1, 0);
+    cm.body_cnode_nreal.clear();
+    cm.sub_local.assign(cm.sub_tri.size(), {0, 0, 0});
+    const int32_t nbodies =
+        cm.body_sub_begin.empty() ? 0 : static_cast<int32_t>(cm.body_sub_begin.size()) - 1;
+    std::vector<NodeId> ids;
+    for (BodyId b = 0; b < nbodies; ++b) {
+        ids.clear();
+        for (int32_t t = cm.body_sub_begin[b]; t < cm.body_sub_begin[b + 1]; ++t)
+            ids.insert(ids.end(), cm.sub_tri[t].begin(), cm.sub_tri[t].end());
+        // ascending contact ids: the real nodes [0, num_real_nodes) come first
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        const auto nreal =
+            std::lower_bound(ids.begin(), ids.end(), cm.num_real_nodes) - ids.begin();
+        cm.body_cnode_nreal.push_back(static_cast<int32_t>(nreal));
+        for (int32_t t = cm.body_sub_begin[b]; t < cm.body_sub_begin[b + 1]; ++t) {
+            for (int k = 0; k < 3; ++k) {
+                const auto it = std::lower_bound(ids.begin(), ids.end(), cm.sub_tri[t][k]);
+                cm.sub_local[t][k] = static_cast<int32_t>(it - ids.begin());
+            }
+        }
+        cm.body_cnode.insert(cm.body_cnode.end(), ids.begin(), ids.end());
+        cm.body_cnode_begin.push_back(static_cast<int32_t>(cm.body_cnode.size()));
+    }
+}
+
 void build_contact_topology(Model& m) {
     ContactModel& cm = m.contact;
     cm.resolved.clear();
@@ -436,6 +465,10 @@ void build_contact_topology(Model& m) {
     cm.sub_parent.clear();
     cm.body_sub_begin.clear();
     cm.sub_legacy_b.clear();
+    cm.body_cnode.clear();
+    cm.body_cnode_begin.clear();
+    cm.body_cnode_nreal.clear();
+    cm.sub_local.clear();
     cm.num_fallback_nodes = 0;
     cm.num_real_nodes = m.num_nodes();
     if (cm.algorithm == ContactAlgorithm::None) return;
@@ -481,6 +514,7 @@ void build_contact_topology(Model& m) {
     for (BodyId b = 0; b < m.num_bodies(); ++b)
         tb.body(b);
     cm.node_dist.resize(static_cast<size_t>(cm.num_contact_nodes()), 0.0);
+    build_body_contact_nodes(cm);
 
     // scale of the force on a target node (docs/theory.md §6.11): m_j / mbar (eq. 19) or
     // l_j / lbar with l_j = half the lengths of the node's boundary edges (its tributary

@@ -6,6 +6,7 @@
 // bitwise the same state with and without the reject.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -47,6 +48,7 @@ ContactModel one_body(int n) {
         cm.sub_body.push_back(0);
     }
     cm.body_sub_begin = {0, n};
+    build_body_contact_nodes(cm);  // body_boxes() takes its production (distinct-node) path
     return cm;
 }
 
@@ -222,6 +224,93 @@ TEST(NarrowReject, VectorTestMatchesScalarFormula) {
     }
     EXPECT_GT(rejected, 20000);
     EXPECT_GT(kept, 20000);
+}
+
+// body_boxes() (bounds over each body's distinct contact nodes, areas through sub_local) gives
+// bitwise the boxes of body_boxes_reference() (every sub-triangle's vertices in turn): random
+// bodies sharing nodes, real and virtual nodes, repeated vertices, signed zeros (ties of -0 and
+// +0 in the bounds), NaN, infinities, slivers, huge and tiny scales, and bodies with more
+// nodes than the local buffer (reference path)
+TEST(NarrowReject, CompactBoxesMatchReference) {
+    std::mt19937_64 rng(4242);
+    std::uniform_real_distribution<Real> u01(0, 1);
+    const Real inf = std::numeric_limits<Real>::infinity(), nan = std::nan("");
+    int64_t finite = 0, infinite = 0, large = 0;
+    for (int trial = 0; trial < 6000; ++trial) {
+        ContactModel cm;
+        const bool big = trial % 50 == 0;
+        const int nreal = big ? 200 : 3 + static_cast<int>(rng() % 8);
+        const int nvirt = static_cast<int>(rng() % 4);
+        cm.num_real_nodes = nreal;
+        const int nbodies = 1 + static_cast<int>(rng() % 3);
+        cm.body_sub_begin = {0};
+        for (int b = 0; b < nbodies; ++b) {
+            const int ntri = big ? 60 : static_cast<int>(rng() % 7);  // 0: empty body
+            for (int t = 0; t < ntri; ++t) {
+                std::array<NodeId, 3> q{};
+                for (NodeId& i : q)
+                    i = static_cast<NodeId>(rng() % static_cast<uint64_t>(nreal + nvirt));
+                cm.sub_tri.push_back(q);
+                cm.sub_body.push_back(b);
+            }
+            cm.body_sub_begin.push_back(static_cast<int32_t>(cm.sub_tri.size()));
+        }
+        build_body_contact_nodes(cm);
+        const Real size = std::pow(10.0, -8 + 16 * u01(rng));
+        const Vec2 origin{std::pow(10.0, -2 + 8 * u01(rng)) * (u01(rng) - 0.5), 0.0};
+        auto coord = [&](Real base) {
+            const uint64_t r = rng() % 64;
+            if (r == 0) return nan;
+            if (r == 1) return rng() % 2 ? inf : -inf;
+            if (r < 6) return 0.0;
+            if (r < 10) return -0.0;
+            return base + size * u01(rng);
+        };
+        std::vector<Vec2> x(static_cast<size_t>(nreal)), xv(static_cast<size_t>(nvirt));
+        for (Vec2& p : x)
+            p = {coord(origin.x), coord(origin.y)};
+        for (Vec2& p : xv)
+            p = {coord(origin.x), coord(origin.y)};
+        if (rng() % 4 == 0 && nreal >= 3) x[2] = x[0] + 0.5 * (x[1] - x[0]);  // collinear
+        std::vector<BodyBox> a(static_cast<size_t>(nbodies)), r(static_cast<size_t>(nbodies));
+        body_boxes(cm, x.data(), xv.data(), a.data(), nbodies);
+        body_boxes_reference(cm, x.data(), xv.data(), r.data(), nbodies);
+        ASSERT_EQ(std::memcmp(a.data(), r.data(), a.size() * sizeof(BodyBox)), 0) << trial;
+        for (const BodyBox& b : r)
+            (std::isinf(b.lo.x) ? infinite : finite) += 1;
+        large += big ? nbodies : 0;
+    }
+    EXPECT_GT(finite, 1000);
+    EXPECT_GT(infinite, 1000);
+    EXPECT_GT(large, 100);
+}
+
+// the same on the real topologies (virtual chord midpoints and incenters) along a run
+TEST(NarrowReject, CompactBoxesMatchReferenceInRuns) {
+    scenes::PackOptions po;
+    po.blocks_x = po.blocks_y = 8;
+    scenes::ParticleOptions pa;
+    pa.nx = pa.ny = 5;
+    pa.v_max = 20;
+    for (const Model& m : {scenes::make_contact_pack(po), scenes::make_particle_box(pa)}) {
+        ASSERT_EQ(m.contact.body_cnode_begin.size(), static_cast<size_t>(m.num_bodies()) + 1);
+        State s = make_state(m, 0.5 * stable_time_step(m));
+        std::vector<BodyBox> a(static_cast<size_t>(m.num_bodies()));
+        std::vector<BodyBox> r(a.size());
+        int64_t finite = 0;
+        for (int n = 0; n < 200; ++n) {
+            step(m, s);
+            if (n % 10 != 0) continue;
+            update_virtual_nodes(m, s);
+            body_boxes(m.contact, s.x.data(), s.contact.xv.data(), a.data(), m.num_bodies());
+            body_boxes_reference(m.contact, s.x.data(), s.contact.xv.data(), r.data(),
+                                 m.num_bodies());
+            ASSERT_EQ(std::memcmp(a.data(), r.data(), a.size() * sizeof(BodyBox)), 0) << n;
+            for (const BodyBox& b : r)
+                finite += std::isfinite(b.lo.x) ? 1 : 0;
+        }
+        EXPECT_GT(finite, 10 * m.num_bodies());  // the real boxes were finite
+    }
 }
 
 // x, v, f and the energies of two runs are bitwise equal
