@@ -53,5 +53,32 @@ BENCHMARK(BM_NarrowPhase)
     ->ArgsProduct({{20000, 200000}, {0, 1}, {1, 2}})
     ->Unit(benchmark::kMicrosecond);
 
+// The per-step body boxes alone (contact.cpp body_boxes(), 1 thread): items/s = bodies/s.
+// Arg 2: 0 = body_boxes() (each body's distinct contact nodes), 1 = body_boxes_reference()
+// (every sub-triangle's vertices in turn, the specification; the pre-round-5 code).
+void BM_BodyBoxes(benchmark::State& st) {
+    omp_set_num_threads(1);
+    const Model& m = bench::cached_pack(st.range(0), st.range(1) != 0);
+    State s = warm_pack(m);
+    update_virtual_nodes(m, s);
+    std::vector<BodyBox> box(static_cast<size_t>(m.num_bodies()));
+    const bool ref = st.range(2) != 0;
+    for (auto _ : st) {
+        if (ref) {
+            body_boxes_reference(m.contact, s.x.data(), s.contact.xv.data(), box.data(),
+                                 m.num_bodies());
+        } else {
+            body_boxes(m.contact, s.x.data(), s.contact.xv.data(), box.data(), m.num_bodies());
+        }
+        benchmark::DoNotOptimize(box.data());
+        benchmark::ClobberMemory();
+    }
+    st.SetItemsProcessed(st.iterations() * m.num_bodies());
+}
+
+BENCHMARK(BM_BodyBoxes)
+    ->ArgsProduct({{20000, 200000}, {0, 1}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 }  // namespace fdem
