@@ -6,7 +6,9 @@
 // grows with N: N = 50 takes ~15 s, N = 100 (the benchmark scene's 10^4 particles) ~1-2 min. Particles go into 8 physical groups p0..p7
 // by hash; the scenario gives each group its own initial velocity. The walls are one ring-shaped
 // surface "walls" around [0, N s] x [0, N s].
-N = 50;         // particles per side
+If (!Exists(N))
+  N = 50;       // particles per side (particles_10k.geo sets 100 and includes this file)
+EndIf
 s = 0.01;       // raster pitch [m]
 R = 0.0045;     // largest vertex distance from the raster point [m]
 T = 0.02;       // wall thickness [m]

@@ -21,3 +21,13 @@ foreach(entry ${FDEM_EXAMPLES})
              -P ${CMAKE_CURRENT_LIST_DIR}/run_example.cmake)
   set_tests_properties(example.${name} PROPERTIES LABELS example TIMEOUT 600)
 endforeach()
+
+# Example 04 at the paper's size (10^4 particles, scenario_10k.toml): Gmsh needs 1-2 min to mesh
+# it, so it is not in the default suite; run it with `ctest --test-dir build/release -L full`.
+add_test(NAME example.04_particles_10k
+         COMMAND ${CMAKE_COMMAND}
+           -DFDEM=$<TARGET_FILE:fdem_cli>
+           -DSCENARIO=${PROJECT_SOURCE_DIR}/examples/04_particles/scenario_10k.toml
+           -DEND_TIME=2.0e-6 -DOUT=${CMAKE_CURRENT_BINARY_DIR}/example_out/04_particles_10k
+           -P ${CMAKE_CURRENT_LIST_DIR}/run_example.cmake)
+set_tests_properties(example.04_particles_10k PROPERTIES LABELS full TIMEOUT 1200)
