@@ -1,10 +1,14 @@
 // Bitwise state hash for determinism checks (tests and bench_step), like Box2D's EXPECTED_HASH.
 #pragma once
 
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <vector>
 
+#include "fdem/build.hpp"
+#include "fdem/simulate.hpp"
 #include "fdem/state.hpp"
 
 namespace fdem::scenes {
@@ -22,6 +26,26 @@ inline uint64_t state_hash(const State& s) {
     mix(s.x);
     mix(s.v);
     return h;
+}
+
+/// The bits of r: EXPECT_EQ(bits(a), bits(b)) compares doubles exactly (also -0 and NaN payloads).
+inline uint64_t bits(Real r) {
+    return std::bit_cast<uint64_t>(r);
+}
+
+/// `steps` steps of m from its initial state with every node moved by up to `strain`
+/// (deterministic) so every triangle is strained; the strain energy is evaluated on two steps
+/// of three, so both element paths (with and without the energy) run. Used to compare two
+/// kernel paths (portable / AVX-512) over whole steps.
+inline State run_perturbed(const Model& m, int steps, Real strain) {
+    State s = make_state(m, 0.5 * stable_time_step(m));
+    for (size_t i = 0; i < s.x.size(); ++i)
+        s.x[i] += strain * Vec2{std::sin(1.7 * i), std::cos(2.3 * i)};
+    for (int i = 0; i < steps; ++i) {
+        s.need_energy = i % 3 != 1;
+        step(m, s);
+    }
+    return s;
 }
 
 }  // namespace fdem::scenes

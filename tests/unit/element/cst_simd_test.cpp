@@ -28,11 +28,7 @@ bool simd_available() {
     return std::string(cst_kernel_name()) != "portable";
 }
 
-uint64_t bits(Real r) {
-    uint64_t u;
-    std::memcpy(&u, &r, sizeof u);
-    return u;
-}
+using scenes::bits;
 
 struct Pass {
     std::vector<Vec2> f;
@@ -198,13 +194,7 @@ void expect_same_run(const Model& m, int steps, int threads, Real strain = 0) {
     Energy e[2];
     for (int k = 0; k < 2; ++k) {
         set_cst_kernel(k == 0 ? CstKernel::Portable : CstKernel::Auto);
-        State s = make_state(m, 0.5 * stable_time_step(m));
-        for (size_t i = 0; i < s.x.size(); ++i)
-            s.x[i] += strain * Vec2{std::sin(1.7 * i), std::cos(2.3 * i)};
-        for (int i = 0; i < steps; ++i) {
-            s.need_energy = i % 3 != 1;  // both element paths: with and without the energy
-            step(m, s);
-        }
+        const State s = scenes::run_perturbed(m, steps, strain);
         hash[k] = scenes::state_hash(s);
         e[k] = s.energy;
     }

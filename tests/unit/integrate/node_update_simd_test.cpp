@@ -20,11 +20,7 @@ struct KernelGuard {
     ~KernelGuard() { set_node_kernel(NodeKernel::Auto); }
 };
 
-uint64_t bits(Real r) {
-    uint64_t u;
-    std::memcpy(&u, &r, sizeof u);
-    return u;
-}
+using scenes::bits;
 
 bool simd_available() {
     set_node_kernel(NodeKernel::Auto);
@@ -40,13 +36,7 @@ void expect_same_run(const Model& m, int steps, int threads, Real strain = 0) {
     for (int k = 0; k < 2; ++k) {
         set_node_kernel(k == 0 ? NodeKernel::Portable : NodeKernel::Auto);
         ASSERT_EQ(node_update_uses_avx512(), k == 1);
-        State s = make_state(m, 0.5 * stable_time_step(m));
-        for (size_t i = 0; i < s.x.size(); ++i)
-            s.x[i] += strain * Vec2{std::sin(1.7 * i), std::cos(2.3 * i)};
-        for (int i = 0; i < steps; ++i) {
-            s.need_energy = i % 3 != 1;
-            step(m, s);
-        }
+        const State s = scenes::run_perturbed(m, steps, strain);
         hash[k] = scenes::state_hash(s);
         e[k] = s.energy;
     }
