@@ -17,6 +17,7 @@ struct PairHistory {
     Real d_max = 0;        ///< largest depth of this contact episode [m]
     Real d_prev = 0;       ///< depth at the previous step [m]
     Real stored = 0;       ///< stored energy of the pair at the previous step [J/m]
+    Vec2 f_damp;           ///< damping force gamma v_r of the previous step, unscaled [N/m]
     Real depth_ratio = 0;  ///< d / largest nodal distance of the triangle, previous step [-]
     int8_t unloading = 0;  ///< literal law: 1 while on the unloading branch
 };

@@ -541,7 +541,7 @@ void add_contact_forces(const Model& m, State& s) {
                 cs.lost_depth_ratio = a.h.depth_ratio;
             }
         }
-        dissipated += release_energy(p, a.h, scale, lost);
+        dissipated += release_energy(p, a.h, scale, lost, dt);
     };
     // only the pairs in contact, in ascending pair order: an active pair that is a candidate
     // but not in contact is released at the same place of the merged order as before (by the

@@ -101,21 +101,20 @@ inline LawResult contact_law(const ContactParams& p, Real d, Vec2 grad, Vec2 v_r
 
     // damping f_d = gamma v_r (eq. 13), optionally its normal part only. No tension (not in
     // the paper; spec §6.2): the normal damping component may cancel the penalty push but never
-    // pull the target in, so c_n <= k_n g |grad d|. Its work on the relative displacement
-    // dt v_r of this step is -(c_n v_rn + gamma |v_rt|^2) dt (theory eq. 6.10).
+    // pull the target in, so c_n <= k_n g |grad d|. Dissipation = minus its work on the relative
+    // displacement dt v_r = x^n - x^{n-1} of the step, trapezoidal in the force as the
+    // central-difference kinetic energy sees it: (f_d^{n-1} + f_d^n) . v_r dt / 2
+    // (theory eq. 6.10; f_d^{n-1} = 0 for a new contact).
     Vec2 fd;
     if (p.damping > 0) {
         const Real push = kn * g * gn;  // |f_n|
         const Real vrn = dot(v_r, r.n);
         const Real cn = std::min(p.damping * vrn, push);
         fd = cn * r.n;
-        diss += cn * vrn * dt;
-        if (!p.damp_normal_only) {
-            const Vec2 vrt = v_r - vrn * r.n;
-            fd += p.damping * vrt;
-            diss += p.damping * norm2(vrt) * dt;
-        }
+        if (!p.damp_normal_only) fd += p.damping * (v_r - vrn * r.n);
+        diss += 0.5 * dot(h.f_damp + fd, v_r) * dt;
     }
+    h.f_damp = fd;
 
     // Coulomb friction with a tangential spring and return mapping (eqs. 14, 17)
     const Real kt = p.tangential_penalty;
@@ -127,10 +126,12 @@ inline LawResult contact_law(const ContactParams& p, Real d, Vec2 grad, Vec2 v_r
         s = s_trial;
         if (kt * std::abs(s_trial) > cap) {
             s = std::copysign(cap / kt, s_trial);
-            // slip at the capped force: dissipation = force x slip (theory eq. 6.11). (The
-            // released spring energy k (s_trial^2 - s^2)/2 would overcount by k slip^2 / 2 per
-            // step in steady sliding.)
-            diss += kt * std::abs(s) * (std::abs(s_trial) - std::abs(s));
+            // dissipation = work of the friction force on the relative tangential displacement
+            // of the step, s_trial - h.s (trapezoidal in the force, as the central-difference
+            // kinetic energy sees it), minus the change of the stored energy k s^2 / 2
+            // (theory eq. 6.11): k (h.s + s)(s_trial - s) / 2. It also books the spring
+            // energy released when the cap mu |f_n| falls; zero while sticking (s = s_trial).
+            diss += 0.5 * kt * (h.s + s) * (s_trial - s);
         }
         ft = (kt * s) * t;
     }
@@ -148,10 +149,15 @@ inline LawResult contact_law(const ContactParams& p, Real d, Vec2 grad, Vec2 v_r
 }
 
 /// Energy that leaves the books when a pair separates or is lost: its tangential spring, and
-/// (if the node was lost with d > 0) the normal part as well.
-inline Real release_energy(const ContactParams& p, const PairHistory& h, Real scale, bool lost) {
-    if (lost) return h.stored;
-    return scale * 0.5 * p.tangential_penalty * h.s * h.s;
+/// (if the node was lost with d > 0) the normal part as well; plus the second half of the
+/// trapezoidal damping work of the step from the last evaluation to now (theory eq. 6.10),
+/// f_d^{n-1} . v_r dt / 2 with v_r ~ f_d^{n-1} / gamma (the pair is no longer located, so its
+/// v_r is not known; exact for the uncapped part, O(dt^2) per separation).
+inline Real release_energy(const ContactParams& p, const PairHistory& h, Real scale, bool lost,
+                           Real dt) {
+    const Real damp = p.damping > 0 ? 0.5 * norm2(h.f_damp) / p.damping * dt : 0.0;
+    if (lost) return h.stored + scale * damp;
+    return scale * (0.5 * p.tangential_penalty * h.s * h.s + damp);
 }
 
 }  // namespace fdem

@@ -92,6 +92,7 @@ void put(Sink& o, const PairHistory& h) {
     put(o, h.d_max);
     put(o, h.d_prev);
     put(o, h.stored);
+    put(o, h.f_damp);
     put(o, h.depth_ratio);
     put(o, h.unloading);
 }
@@ -246,6 +247,7 @@ public:
             get(v.d_max);
             get(v.d_prev);
             get(v.stored);
+            get(v.f_damp);
             get(v.depth_ratio);
             get(v.unloading);
         } else if constexpr (std::is_same_v<T, ActiveContact>) {

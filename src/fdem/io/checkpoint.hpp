@@ -26,8 +26,9 @@
 namespace fdem {
 
 /// Version of the checkpoint layout; bump it whenever the payload changes.
-constexpr uint32_t kCheckpointFormat = 3;  // 2: baseline A couples (ContactState::legacy)
+constexpr uint32_t kCheckpointFormat = 4;  // 2: baseline A couples (ContactState::legacy)
                                            // 3: Energy::work_external_pending
+                                           // 4: PairHistory::f_damp
 
 /// Running energy-balance monitor (the [checks] energy test of the CLI), kept in checkpoints so
 /// a restarted run measures the drift from the same E_0.

@@ -252,7 +252,9 @@ TEST_F(CheckpointTest, RefusesAnotherFormatAndVersion) {
 // information between steps, save it in checkpoint.cpp (put_state / read_checkpoint) if so, bump
 // kCheckpointFormat, then update the sizes here (x86-64, libstdc++).
 TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
-    EXPECT_EQ(sizeof(PairHistory), 48u) << "PairHistory changed: update io/checkpoint.cpp";
+    // 48 -> 64: PairHistory::f_damp (the previous damping force, trapezoidal damping work,
+    // theory eq. 6.10), saved since format 4
+    EXPECT_EQ(sizeof(PairHistory), 64u) << "PairHistory changed: update io/checkpoint.cpp";
     EXPECT_EQ(sizeof(LegacyCouple), 56u) << "LegacyCouple changed: update io/checkpoint.cpp";
     EXPECT_EQ(sizeof(LegacyTriangleState), 320u)
         << "LegacyTriangleState changed: update io/checkpoint.cpp";
