@@ -16,7 +16,17 @@ struct BodyOptions {
     std::string name;      ///< scenario body name
     int32_t material = 0;  ///< index into Model::materials (must exist)
     bool fixed = false;    ///< all nodes held fixed
-    Vec2 velocity;         ///< initial velocity [m/s]
+    /// Initial velocity field (docs/theory.md eq. 5.5), per connected piece:
+    /// v(x) = velocity + angular_velocity e_z x (x - o) + velocity_gradient (x - o), with
+    /// o = origin, or the piece's own mass centre when origin_centroid.
+    Vec2 velocity;                ///< v0 [m/s]
+    Real angular_velocity = 0;    ///< omega [rad/s], counter-clockwise positive
+    Mat2 velocity_gradient;       ///< G [1/s], row-major [[dvx/dx, dvx/dy], [dvy/dx, dvy/dy]]
+    bool origin_centroid = true;  ///< o = each piece's mass centre (else origin)
+    Vec2 origin;                  ///< o [m] when !origin_centroid
+    /// true: every piece moves rigidly, with the field's velocity at its mass centre c and the
+    /// spin omega + (G_yx - G_xy)/2 about c; false: the field is evaluated at every node
+    bool rigid_pieces = false;
     /// Element formulation; nullopt takes it from the mesh: Composite6 for 6-node triangles,
     /// Cst for 3-node ones. Cst on a 6-node mesh splits every 6-node triangle into its four
     /// sub-triangles as plain CSTs; Composite6 on a 3-node mesh is an InputError.

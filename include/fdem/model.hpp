@@ -78,6 +78,48 @@ struct VelocityKick {
     Vec2 velocity;  ///< [m/s]
 };
 
+/// Time function of a load: the factor that multiplies its magnitude at time t
+/// (docs/scenario.md [[load]], docs/theory.md eq. 4.6).
+struct TimeFunction {
+    enum class Kind : uint8_t {
+        Constant,  ///< 1 for all t
+        Ramp,      ///< t / ramp_time up to ramp_time, then 1
+        Table,     ///< piecewise linear through table (t strictly increasing), held at the ends
+    };
+    Kind kind = Kind::Constant;
+    Real ramp_time = 0;                       ///< [s], > 0 for Ramp
+    std::vector<std::array<Real, 2>> table;   ///< (t [s], factor [-]) pairs for Table
+    /// Factor at time t [s].
+    Real at(Real t) const;
+};
+
+/// What a [[load]] applies (docs/scenario.md, docs/theory.md §4.1).
+enum class LoadKind : uint8_t {
+    Traction,  ///< dead traction [N/m^2 = Pa] per unit reference edge length (and thickness)
+    Pressure,  ///< follower pressure [Pa], normal to the current edge, positive inward
+    Force,     ///< resultant point force [N/m], split equally over the nodes
+};
+
+/// An external load on a boundary group of one body entry (theory eqs. 4.5-4.7).
+/// Traction and pressure act on boundary edges, force on nodes; all ids are model node ids.
+struct Load {
+    std::string name;  ///< "body/group", for messages
+    LoadKind kind = LoadKind::Traction;
+    Vec2 vector;        ///< traction [Pa] or resultant force [N/m]
+    Real pressure = 0;  ///< [Pa], positive compressive (pushes into the body)
+    TimeFunction time_function;
+    /// Traction, Pressure: boundary edges (a, b) oriented counter-clockwise around their body
+    /// (the body lies to the left of a -> b, the outward normal is (b - a) rotated by -90 deg)
+    std::vector<std::array<NodeId, 2>> edges;
+    std::vector<Real> edge_length0;  ///< reference length of each edge [m] (Traction)
+    std::vector<NodeId> nodes;       ///< Force: sorted, unique
+    /// Slots of this load in State::scratch_load: one per edge or node, from slot_begin.
+    int32_t slot_begin = 0;
+    int32_t num_slots() const {
+        return static_cast<int32_t>(kind == LoadKind::Force ? nodes.size() : edges.size());
+    }
+};
+
 /// Global damping used only to reach equilibrium: f = -c m v while t < until (spec §3.2).
 struct MassDamping {
     Real coefficient = 0;  ///< c [1/s]
@@ -117,6 +159,7 @@ struct Model {
 
     std::vector<BoundaryCondition> bcs;
     std::vector<VelocityKick> kicks;
+    std::vector<Load> loads;  ///< external loads (finalize_model() sets their slot_begin)
     MassDamping mass_damping;
     Vec2 gravity;  ///< [m/s^2]
 

@@ -17,8 +17,9 @@ struct Energy {
     Real strain = 0;                 ///< sum A0 W(F) (stale when State::need_energy was false)
     Real contact = 0;                ///< stored contact potential (path-independent part)
     Real work_gravity = 0;           ///< work done by gravity since t = 0
-    Real work_external = 0;          ///< work done by prescribed-velocity supports and kicks
-    Real work_external_pending = 0;  ///< half of the last step's support work, booked next step
+    Real work_external = 0;  ///< work done by prescribed-velocity supports, kicks and loads
+    /// the part of the last step's support and load work that belongs after t^n, booked next step
+    Real work_external_pending = 0;
     Real dissipated_viscous = 0;     ///< material damping eta D:D and mass damping
     Real dissipated_contact = 0;     ///< contact damping, hysteresis and friction
     Real total() const {
@@ -39,6 +40,9 @@ struct State {
 
     Energy energy;
     std::vector<Vec2> scratch_bc_v;  ///< v^{n-1/2}, then x^n, of supported nodes (step() scratch)
+    /// force of each load slot (Load::slot_begin) at t^n: per edge the force on each of its two
+    /// nodes, per node of a point load its share (step() scratch, rewritten every step)
+    std::vector<Vec2> scratch_load;
     /// per-chunk partial sums of step()'s reductions, combined in chunk order (determinism)
     std::vector<Real> scratch_sums;
     int32_t next_kick = 0;  ///< index of the next VelocityKick to apply

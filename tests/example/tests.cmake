@@ -7,6 +7,7 @@ set(FDEM_EXAMPLES
   "03_contact_slide         0.05"
   "04_particles             2.0e-5"
   "05_composite             2.0e-3"
+  "06_pressurised_ring      0.03"
 )
 foreach(entry ${FDEM_EXAMPLES})
   string(REGEX REPLACE " +" ";" parts "${entry}")

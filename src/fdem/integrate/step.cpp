@@ -1,8 +1,10 @@
 // The explicit time step (docs/architecture.md, docs/theory.md §5):
+//   0. load forces at t^n on x^n (integrate/loads.cpp), their work over [x^{n-1}, x^n]
 //   1. kicks due at t^n overwrite velocities
 //   2. clear forces
 //   3. internal forces of the triangles (elastic + viscous)          element/cst.cpp
 //   4. contact forces (broad phase when the skin is exceeded, law)    contact/
+//      + the load forces of step 0
 //   5. gravity and mass-proportional damping
 //   6. central difference: v^{n+1/2} = v^{n-1/2} + dt f/m; prescribed components overwrite v
 //   7. energy accounting at t^n; x^{n+1} = x^n + dt v^{n+1/2}
@@ -20,6 +22,7 @@
 #include "element/cst.hpp"
 #include "fdem/error.hpp"
 #include "fdem/simulate.hpp"
+#include "integrate/loads.hpp"
 #include "integrate/node_update.hpp"
 
 namespace fdem {
@@ -64,6 +67,10 @@ State make_state(const Model& m, Real dt) {
     for (const BoundaryCondition& bc : m.bcs)
         n_bc += bc.nodes.size();
     s.scratch_bc_v.assign(2 * n_bc, Vec2{});  // v^{n-1/2}, then x^n of each supported node
+    size_t n_load_slots = 0;
+    for (const Load& ld : m.loads)
+        n_load_slots += static_cast<size_t>(ld.num_slots());
+    s.scratch_load.assign(n_load_slots, Vec2{});
     // partial sums: 4 per element chunk (element/cst.cpp), 3 per node block (below)
     const size_t n_blocks = (m.node_x0.size() + kNodeBlock - 1) / kNodeBlock;
     s.scratch_sums.assign(
@@ -161,6 +168,18 @@ void step(const Model& m, State& s) {
     Vec2* x = s.x.data();
     Vec2* v = s.v.data();
     Vec2* f = s.f.data();
+    const bool first = s.step == 0;
+
+    // 0. load forces F^n on x^n, and the half of their trapezoidal work over [x^{n-1}, x^n]
+    // that F^n does: 1/2 F^n . dt v^{n-1/2} (theory eq. 4.7), with v^{n-1/2} before any kick
+    // (it is what moved the nodes); the F^{n-1} half was booked as pending by the last step
+    const bool loaded = !m.loads.empty();
+    Vec2* load_f = s.scratch_load.data();
+    Real load_work_now = 0;
+    if (loaded) {
+        evaluate_loads(m, s.time, x, load_f);
+        if (!first) load_work_now = 0.5 * dt * load_power(m, load_f, v);
+    }
 
     // 1. kicks
     apply_kicks(m, s);
@@ -192,6 +211,7 @@ void step(const Model& m, State& s) {
 
     // 4. contact forces (writes s.f, s.f_contact, s.energy.contact, dissipated_contact)
     add_contact_forces(m, s);
+    if (loaded) add_load_forces(m, load_f, f);
 
     // remember v^{n-1/2} and x^n of supported nodes (preallocated scratch): their reaction needs
     // the old velocity, and their position is redone from x^n once the support has set v
@@ -216,7 +236,6 @@ void step(const Model& m, State& s) {
     const Vec2 g = m.gravity;
     // the first step starts from v^0 and advances half a step to v^{1/2} (theory eq. 5.1), so a
     // constant acceleration is integrated exactly: x^n = x^0 + v^0 t + a t^2 / 2
-    const bool first = s.step == 0;
     const Real dt_v = first ? 0.5 * dt : dt;
     const NodeId n_blocks = (nn + kNodeBlock - 1) / kNodeBlock;
     if (s.scratch_sums.size() < kNodeSlots * static_cast<size_t>(n_blocks)) {
@@ -289,8 +308,16 @@ void step(const Model& m, State& s) {
     s.energy.work_gravity = gravity_work;
     // the reaction R^n acts over [t^{n-1/2}, t^{n+1/2}]: half of its work belongs before t^n, the
     // other half is booked with the next step (theory eq. 4.3)
-    s.energy.work_external += s.energy.work_external_pending + 0.5 * support_work;
-    s.energy.work_external_pending = 0.5 * support_work;
+    if (loaded) {
+        // loads: 1/2 F^n . (x^{n+1} - x^n) belongs after t^n, booked next step (theory eq. 4.7)
+        const Real load_work_pending = 0.5 * dt * load_power(m, load_f, v);
+        s.energy.work_external +=
+            s.energy.work_external_pending + 0.5 * support_work + load_work_now;
+        s.energy.work_external_pending = 0.5 * support_work + load_work_pending;
+    } else {
+        s.energy.work_external += s.energy.work_external_pending + 0.5 * support_work;
+        s.energy.work_external_pending = 0.5 * support_work;
+    }
     s.energy.dissipated_viscous += (pass.viscous_power + damping_power) * dt_v;
 
     s.time += dt;

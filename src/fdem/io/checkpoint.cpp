@@ -360,6 +360,18 @@ uint64_t model_hash(const Model& m, Real dt) {
         put(h, k.has_y);
         put(h, k.velocity);
     }
+    put(h, static_cast<uint64_t>(m.loads.size()));
+    for (const Load& ld : m.loads) {
+        put(h, ld.kind);
+        put(h, ld.vector);
+        put(h, ld.pressure);
+        put(h, ld.time_function.kind);
+        put(h, ld.time_function.ramp_time);
+        put(h, ld.time_function.table);
+        put(h, ld.edges);
+        put(h, ld.edge_length0);
+        put(h, ld.nodes);
+    }
     put(h, m.mass_damping.coefficient);
     put(h, m.mass_damping.until);
     put(h, m.gravity);

@@ -2,7 +2,7 @@
 // read the meshes, build the Model and choose the time step.
 //
 // Order of work: TOML syntax -> [simulation] -> [output] -> [[material]] -> [[body]] (meshes
-// read once per file and size) -> [[boundary]] -> [[kick]] -> [damping] -> [contact] ->
+// read once per file and size) -> [[boundary]] -> [[load]] -> [[kick]] -> [damping] -> [contact] ->
 // finalize_model() -> stable dt check. Every problem is an InputError at the key concerned.
 #include <algorithm>
 #include <cmath>
@@ -31,7 +31,7 @@ using io::SourceText;
 namespace fs = std::filesystem;
 
 const std::vector<std::string> kTopKeys = {"simulation", "output",  "material", "body",  "boundary",
-                                           "kick",       "damping", "contact",  "checks"};
+                                           "load",       "kick",       "damping", "contact",  "checks"};
 const std::vector<std::string> kContactLawKeys = {"penalty",  "alpha",
                                                   "beta",     "length_scale",
                                                   "damping",  "damp_normal_only",
@@ -157,6 +157,7 @@ public:
         read_materials(root, sc.model);
         read_bodies(root, sc.model);
         read_boundaries(root, sc.model);
+        read_loads(root, sc.model);
         read_kicks(root, sc.model);
         read_damping(root, sc.model);
         read_contact(root, sc.model);
@@ -336,7 +337,8 @@ private:
             Fields f(src_, *tables[i], fmt::format("[[body]] #{}", i + 1),
                      fmt::format("body[{}]", i),
                      {"name", "mesh", "mesh_size", "group", "material", "velocity", "fixed",
-                      "element", "pieces"});
+                      "element", "pieces", "angular_velocity", "velocity_gradient", "origin",
+                      "piece_motion"});
             BodyEntry entry;
             entry.name = f.string("name", std::nullopt);
             entry.table = tables[i];
@@ -353,6 +355,7 @@ private:
             opt.material = material_index(f, "material");
             opt.velocity = f.vec2("velocity", Vec2{0, 0}, "m/s");
             opt.fixed = f.boolean("fixed", false);
+            read_velocity_field(f, opt);
             // element formulation (docs/scenario.md): omitted = from the mesh (6-node triangles
             // -> composite, 3-node -> cst); "composite" meshes a .geo at order 2
             if (f.has("element")) {
@@ -447,6 +450,76 @@ private:
             }
             check_duplicate_nodes(f, lm, entry.node_map, m);
             bodies_.push_back(std::move(entry));
+        }
+    }
+
+    /// Initial velocity field of a [[body]] entry beyond 'velocity' (docs/scenario.md, theory
+    /// eq. 5.5): angular_velocity, velocity_gradient, origin, piece_motion.
+    static void read_velocity_field(const Fields& f, BodyOptions& opt) {
+        opt.angular_velocity = f.real("angular_velocity", 0.0, "rad/s", Bounds::any());
+        if (const toml::node* n = f.node("velocity_gradient")) {
+            const std::string what =
+                "a 2x2 matrix [[dvx/dx, dvx/dy], [dvy/dx, dvy/dy]] of finite numbers in 1/s";
+            const toml::array* rows = n->as_array();
+            Real g[2][2] = {};
+            bool ok = rows && rows->size() == 2;
+            for (size_t r = 0; ok && r < 2; ++r) {
+                const toml::array* row = rows->get(r)->as_array();
+                ok = row && row->size() == 2;
+                for (size_t c = 0; ok && c < 2; ++c) {
+                    ok = row->get(c)->is_number();
+                    if (ok) {
+                        g[r][c] = row->get(c)->value<double>().value_or(0.0);
+                        ok = std::isfinite(g[r][c]);
+                    }
+                }
+            }
+            if (!ok) {
+                f.fail(*n, "velocity_gradient",
+                       fmt::format("velocity_gradient must be {}, got {}", what,
+                                   io::describe_value(*n)));
+            }
+            opt.velocity_gradient = Mat2{g[0][0], g[0][1], g[1][0], g[1][1]};
+        }
+        const Mat2& G = opt.velocity_gradient;
+        const bool field = opt.angular_velocity != 0 || G.xx != 0 || G.xy != 0 || G.yx != 0 ||
+                           G.yy != 0;
+        if (const toml::node* n = f.node("origin")) {
+            if (!field) {
+                f.fail(*n, "origin",
+                       "origin is the point about which angular_velocity and velocity_gradient "
+                       "act, but neither is given (or both are zero); remove origin or give one "
+                       "of them");
+            }
+            if (n->is_string()) {
+                if (n->value<std::string>().value_or("") != "centroid") {
+                    f.fail(*n, "origin",
+                           fmt::format("origin must be [x, y] in m or \"centroid\" (each "
+                                       "piece's own mass centre), got {}",
+                                       io::describe_value(*n)));
+                }
+                opt.origin_centroid = true;
+            } else {
+                opt.origin = f.vec2("origin", std::nullopt, "m");
+                opt.origin_centroid = false;
+            }
+        }
+        if (const toml::node* n = f.node("piece_motion")) {
+            if (!field) {
+                f.fail(*n, "piece_motion",
+                       "piece_motion says how angular_velocity and velocity_gradient move each "
+                       "piece, but neither is given (or both are zero); remove piece_motion or "
+                       "give one of them");
+            }
+            opt.rigid_pieces =
+                f.choice("piece_motion", std::nullopt, {"affine", "rigid"}) == "rigid";
+        }
+        if (field && f.boolean("fixed", false)) {
+            const char* key = opt.angular_velocity != 0 ? "angular_velocity" : "velocity_gradient";
+            f.fail(*f.node(key), key,
+                   fmt::format("{} sets an initial velocity, but fixed = true holds every node "
+                               "of the body at rest; remove one of them",
+                               key));
         }
     }
 
@@ -578,6 +651,232 @@ private:
                                    group, entry.name, mesh.file));
             }
             m.bcs.push_back(std::move(bc));
+        }
+    }
+
+    // ---- [[load]] --------------------------------------------------------------------------
+    /// Time function keys of a [[load]] (docs/scenario.md, theory eq. 4.8).
+    static TimeFunction read_time_function(const Fields& f) {
+        TimeFunction tf;
+        const std::string kind =
+            f.choice("time_function", std::string("constant"), {"constant", "ramp", "table"});
+        if (kind != "ramp" && f.has("ramp_time")) {
+            f.fail(*f.node("ramp_time"), "ramp_time",
+                   fmt::format("ramp_time only applies with time_function = \"ramp\" (here "
+                               "\"{}\"); remove it or set time_function = \"ramp\"",
+                               kind));
+        }
+        if (kind != "table" && f.has("table")) {
+            f.fail(*f.node("table"), "table",
+                   fmt::format("table only applies with time_function = \"table\" (here "
+                               "\"{}\"); remove it or set time_function = \"table\"",
+                               kind));
+        }
+        if (kind == "ramp") {
+            tf.kind = TimeFunction::Kind::Ramp;
+            tf.ramp_time = f.real("ramp_time", std::nullopt, "s", Bounds::positive());
+            if (!std::isfinite(tf.ramp_time)) {
+                f.fail(*f.node("ramp_time"), "ramp_time",
+                       fmt::format("ramp_time must be finite, got {}",
+                                   io::describe_value(*f.node("ramp_time"))));
+            }
+        } else if (kind == "table") {
+            tf.kind = TimeFunction::Kind::Table;
+            const toml::node* n = f.node("table");
+            const std::string what =
+                "a list of [time in s, factor] pairs with strictly increasing times, e.g. "
+                "[[0, 0], [0.01, 1]]";
+            if (!n) {
+                f.fail_missing("table", what);
+            }
+            const toml::array* a = n->as_array();
+            if (!a || a->empty()) {
+                f.fail(*n, "table",
+                       fmt::format("table must be {}, got {}", what, io::describe_value(*n)));
+            }
+            for (size_t k = 0; k < a->size(); ++k) {
+                const toml::node& e = *a->get(k);
+                const toml::array* p = e.as_array();
+                if (!p || p->size() != 2 || !p->get(0)->is_number() || !p->get(1)->is_number()) {
+                    f.fail(e, "table",
+                           fmt::format("table entry {} must be [time in s, factor], got {}", k + 1,
+                                       io::describe_value(e)));
+                }
+                const Real t = p->get(0)->value<double>().value_or(0.0);
+                const Real v = p->get(1)->value<double>().value_or(0.0);
+                if (!std::isfinite(t) || !std::isfinite(v)) {
+                    f.fail(e, "table",
+                           fmt::format("table entry {} must be finite, got {}", k + 1,
+                                       io::describe_value(e)));
+                }
+                if (!tf.table.empty() && !(t > tf.table.back()[0])) {
+                    f.fail(e, "table",
+                           fmt::format("table times must be strictly increasing, but entry {} "
+                                       "has t = {} s after t = {} s",
+                                       k + 1, t, tf.table.back()[0]));
+                }
+                tf.table.push_back({t, v});
+            }
+        }
+        return tf;
+    }
+
+    void read_loads(const toml::table& root, Model& m) {
+        const auto tables = table_array(src_, root, "load", "load");
+        for (size_t i = 0; i < tables.size(); ++i) {
+            Fields f(src_, *tables[i], fmt::format("[[load]] #{}", i + 1),
+                     fmt::format("load[{}]", i),
+                     {"body", "group", "traction", "pressure", "force", "time_function",
+                      "ramp_time", "table"});
+            const int b = body_index(f, "body");
+            const BodyEntry& entry = bodies_[static_cast<size_t>(b)];
+            const MeshData& mesh = meshes_[static_cast<size_t>(entry.mesh)].data;
+            const std::string group = f.string("group", std::nullopt);
+            f.set_context(fmt::format("load on \"{}\" of body \"{}\"", group, entry.name));
+
+            Load ld;
+            ld.name = entry.name + "/" + group;
+            const int given = int(f.has("traction")) + int(f.has("pressure")) + int(f.has("force"));
+            if (given != 1) {
+                f.fail_table(
+                    "give exactly one of 'traction' ([tx, ty] in Pa on the edges of a curve "
+                    "group), 'pressure' (in Pa, normal to the current edges of a curve group, "
+                    "positive pushing into the body) or 'force' ([fx, fy] in N/m, the resultant "
+                    "on the nodes of a group)");
+            }
+            if (f.has("traction")) {
+                ld.kind = LoadKind::Traction;
+                ld.vector = f.vec2("traction", std::nullopt, "Pa");
+            } else if (f.has("pressure")) {
+                ld.kind = LoadKind::Pressure;
+                ld.pressure = f.real("pressure", std::nullopt, "Pa", Bounds::any());
+                if (!std::isfinite(ld.pressure)) {
+                    f.fail(*f.node("pressure"), "pressure",
+                           fmt::format("pressure must be a finite number in Pa, got {}",
+                                       io::describe_value(*f.node("pressure"))));
+                }
+            } else {
+                ld.kind = LoadKind::Force;
+                ld.vector = f.vec2("force", std::nullopt, "N/m");
+            }
+            ld.time_function = read_time_function(f);
+
+            // a load on a fixed body would do nothing: say so instead
+            bool fixed = true;
+            for (const Body& body : m.bodies) {
+                if (body.group == b && !body.fixed) fixed = false;
+            }
+            if (fixed) {
+                f.fail(*f.node("body"), "body",
+                       fmt::format("body \"{}\" is fixed (fixed = true), so a load on it would "
+                                   "do nothing; load a body that can move",
+                                   entry.name));
+            }
+
+            bool found = false, curve = false;
+            for (const PhysicalGroup& g : mesh.groups) {
+                if (g.name != group) continue;
+                found = true;
+                curve = curve || g.dim == 1;
+            }
+            if (!found) {
+                const std::string guess = io::closest(group, group_names(mesh));
+                f.fail(
+                    *f.node("group"), "group",
+                    fmt::format("mesh '{}' has no physical group \"{}\"{}; {}", mesh.file, group,
+                                guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
+                                available_groups(mesh)));
+            }
+            if (ld.kind == LoadKind::Force) {
+                for (const PhysicalGroup& g : mesh.groups) {
+                    if (g.name != group) continue;
+                    for (const int32_t n : mesh.group_nodes(g)) {
+                        const NodeId id = entry.node_map[static_cast<size_t>(n)];
+                        if (id != kNone) ld.nodes.push_back(id);
+                    }
+                }
+                std::sort(ld.nodes.begin(), ld.nodes.end());
+                ld.nodes.erase(std::unique(ld.nodes.begin(), ld.nodes.end()), ld.nodes.end());
+                if (ld.nodes.empty()) {
+                    f.fail(*f.node("group"), "group",
+                           fmt::format("physical group \"{}\" selects none of the nodes of body "
+                                       "\"{}\" (it lies on another part of mesh '{}')",
+                                       group, entry.name, mesh.file));
+                }
+            } else {
+                if (!curve) {
+                    f.fail(*f.node("group"), "group",
+                           fmt::format("{} acts on boundary edges, but physical group \"{}\" of "
+                                       "mesh '{}' is not a curve group (its line elements are "
+                                       "the loaded edges); use a Physical Curve, or 'force' for "
+                                       "a point group",
+                                       ld.kind == LoadKind::Traction ? "traction" : "pressure",
+                                       group, mesh.file));
+                }
+                load_edges(f, m, b, entry, mesh, group, ld);
+            }
+            m.loads.push_back(std::move(ld));
+        }
+    }
+
+    /// The boundary edges of body entry b under the line elements of curve group `group`,
+    /// oriented counter-clockwise around the body (Load::edges); a 3-node line gives its two
+    /// halves, the edges of the sub-triangles. Every edge must be on the body's boundary.
+    void load_edges(const Fields& f, const Model& m, int b, const BodyEntry& entry,
+                    const MeshData& mesh, const std::string& group, Load& ld) const {
+        // directed boundary edges of the entry's triangles: an undirected edge used by exactly
+        // one triangle, kept in that triangle's counter-clockwise direction
+        std::map<std::pair<NodeId, NodeId>, std::pair<int, std::array<NodeId, 2>>> edges;
+        for (const Body& body : m.bodies) {
+            if (body.group != b) continue;
+            for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
+                const auto& n = m.tri_nodes[static_cast<size_t>(t)];
+                for (int k = 0; k < 3; ++k) {
+                    const NodeId p = n[static_cast<size_t>(k)], q = n[static_cast<size_t>((k + 1) % 3)];
+                    auto& e = edges[{std::min(p, q), std::max(p, q)}];
+                    ++e.first;
+                    e.second = {p, q};
+                }
+            }
+        }
+        const auto add = [&](int32_t mp, int32_t mq) {
+            const NodeId p = entry.node_map[static_cast<size_t>(mp)];
+            const NodeId q = entry.node_map[static_cast<size_t>(mq)];
+            if (p == kNone || q == kNone) return;  // another part of the mesh
+            const auto it = edges.find({std::min(p, q), std::max(p, q)});
+            const Vec2 a = mesh.nodes[static_cast<size_t>(mp)], c = mesh.nodes[static_cast<size_t>(mq)];
+            if (it == edges.end() || it->second.first != 1) {
+                f.fail(*f.node("group"), "group",
+                       fmt::format("the edge from ({:g}, {:g}) to ({:g}, {:g}) m of physical group "
+                                   "\"{}\" is {} of body \"{}\", not on its boundary; a "
+                                   "traction or pressure needs a curve on the body's outline",
+                                   a.x, a.y, c.x, c.y, group,
+                                   it == edges.end() ? "not an edge of the triangles"
+                                                     : "inside (shared by two triangles)",
+                                   entry.name));
+            }
+            const std::array<NodeId, 2> d = it->second.second;
+            ld.edges.push_back(d);
+            ld.edge_length0.push_back(norm(m.node_x0[static_cast<size_t>(d[1])] -
+                                           m.node_x0[static_cast<size_t>(d[0])]));
+        };
+        for (const PhysicalGroup& g : mesh.groups) {
+            if (g.name != group || g.dim != 1) continue;
+            for (const int32_t e : g.elements) {
+                const auto& l = mesh.lines[static_cast<size_t>(e)];
+                if (mesh.line_mid.empty()) {
+                    add(l[0], l[1]);
+                } else {
+                    add(l[0], mesh.line_mid[static_cast<size_t>(e)]);
+                    add(mesh.line_mid[static_cast<size_t>(e)], l[1]);
+                }
+            }
+        }
+        if (ld.edges.empty()) {
+            f.fail(*f.node("group"), "group",
+                   fmt::format("physical group \"{}\" selects none of the edges of body \"{}\" "
+                               "(it lies on another part of mesh '{}')",
+                               group, entry.name, mesh.file));
         }
     }
 

@@ -49,6 +49,43 @@ void compute_lame(Material& mat) {
     }
 }
 
+namespace {
+
+/// Initial velocity of the nodes of one piece from the affine field of its entry (theory
+/// eq. 5.5). Leaves node_v0 = opt.velocity (bitwise) when the field has no spin or gradient.
+void set_initial_velocity(Model& m, const Body& b, const BodyOptions& opt) {
+    const Mat2& G = opt.velocity_gradient;
+    const Real w = opt.angular_velocity;
+    if (w == 0 && G.xx == 0 && G.xy == 0 && G.yx == 0 && G.yy == 0) return;
+    // mass centre of the piece: the area-weighted triangle centroids, which is also the centre
+    // of the lumped masses rho A / 3 (theory eq. 3.4) for the one density of the entry
+    Vec2 c{0, 0};
+    Real area = 0;
+    for (TriId t = b.tri_begin; t < b.tri_end; ++t) {
+        const auto& n = m.tri_nodes[static_cast<size_t>(t)];
+        const Vec2 p0 = m.node_x0[n[0]], p1 = m.node_x0[n[1]], p2 = m.node_x0[n[2]];
+        const Real a = signed_area(p0, p1, p2);
+        c += (a / 3.0) * (p0 + p1 + p2);
+        area += a;
+    }
+    c = c / area;
+    const Vec2 o = opt.origin_centroid ? c : opt.origin;
+    if (opt.rigid_pieces) {
+        // rigid: translation = the field at c, spin = omega + the vorticity of G
+        const Vec2 vc = opt.velocity + w * perp(c - o) + G * (c - o);
+        const Real spin = w + 0.5 * (G.yx - G.xy);
+        for (NodeId i = b.node_begin; i < b.node_end; ++i)
+            m.node_v0[static_cast<size_t>(i)] = vc + spin * perp(m.node_x0[static_cast<size_t>(i)] - c);
+        return;
+    }
+    for (NodeId i = b.node_begin; i < b.node_end; ++i) {
+        const Vec2 r = m.node_x0[static_cast<size_t>(i)] - o;
+        m.node_v0[static_cast<size_t>(i)] = opt.velocity + w * perp(r) + G * r;
+    }
+}
+
+}  // namespace
+
 std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector<int32_t>& tri_ids,
                                const BodyOptions& opt) {
     const int32_t n_mesh_nodes = static_cast<int32_t>(mesh.nodes.size());
@@ -217,6 +254,7 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
         body.node_end = m.num_nodes();
         body.tri_end = m.num_tris();
         m.bodies.push_back(body);
+        set_initial_velocity(m, body, opt);
     }
     return map;
 }
@@ -258,6 +296,12 @@ void finalize_model(Model& m) {
     }
     std::stable_sort(m.kicks.begin(), m.kicks.end(),
                      [](const VelocityKick& a, const VelocityKick& b) { return a.time < b.time; });
+
+    int32_t slot = 0;  // State::scratch_load slots of each load
+    for (Load& ld : m.loads) {
+        ld.slot_begin = slot;
+        slot += ld.num_slots();
+    }
 
     build_contact_topology(m);
     m.element_schedule = build_element_schedule(m);

@@ -110,6 +110,15 @@ bool renumber_spatially(Model& m) {
             n = node_new[static_cast<size_t>(n)];
         std::sort(bc.nodes.begin(), bc.nodes.end());
     }
+    for (Load& ld : m.loads) {
+        for (auto& e : ld.edges) {
+            for (NodeId& n : e)
+                n = node_new[static_cast<size_t>(n)];
+        }
+        for (NodeId& n : ld.nodes)
+            n = node_new[static_cast<size_t>(n)];
+        std::sort(ld.nodes.begin(), ld.nodes.end());
+    }
     return true;
 }
 

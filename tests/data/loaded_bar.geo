@@ -1,0 +1,31 @@
+// Bar [0, 1] x [0, 0.1] m for the load tests (tests/verification/integrate/loads_test.cpp,
+// tests/input/io/load_errors_test.cpp): two surfaces joined along the interior line x = 0.5
+// ("middle", not on the boundary), the right end split at its mid-point ("tip", a point group).
+lc = 0.05;
+Point(1) = {0, 0, 0, lc};
+Point(2) = {0.5, 0, 0, lc};
+Point(3) = {1, 0, 0, lc};
+Point(4) = {1, 0.05, 0, lc};
+Point(5) = {1, 0.1, 0, lc};
+Point(6) = {0.5, 0.1, 0, lc};
+Point(7) = {0, 0.1, 0, lc};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 5};
+Line(5) = {5, 6};
+Line(6) = {6, 7};
+Line(7) = {7, 1};
+Line(8) = {2, 6};
+Curve Loop(1) = {1, 8, 6, 7};
+Curve Loop(2) = {2, 3, 4, 5, -8};
+Plane Surface(1) = {1};
+Plane Surface(2) = {2};
+Physical Surface("bar") = {1, 2};
+Physical Curve("left") = {7};
+Physical Curve("right") = {3, 4};
+Physical Curve("top") = {5, 6};
+Physical Curve("bottom") = {1, 2};
+Physical Curve("middle") = {8};
+Physical Point("tip") = {4};
+Physical Point("corner") = {1};
