@@ -675,11 +675,6 @@ private:
         if (kind == "ramp") {
             tf.kind = TimeFunction::Kind::Ramp;
             tf.ramp_time = f.real("ramp_time", std::nullopt, "s", Bounds::positive());
-            if (!std::isfinite(tf.ramp_time)) {
-                f.fail(*f.node("ramp_time"), "ramp_time",
-                       fmt::format("ramp_time must be finite, got {}",
-                                   io::describe_value(*f.node("ramp_time"))));
-            }
         } else if (kind == "table") {
             tf.kind = TimeFunction::Kind::Table;
             const toml::node* n = f.node("table");
@@ -750,11 +745,6 @@ private:
             } else if (f.has("pressure")) {
                 ld.kind = LoadKind::Pressure;
                 ld.pressure = f.real("pressure", std::nullopt, "Pa", Bounds::any());
-                if (!std::isfinite(ld.pressure)) {
-                    f.fail(*f.node("pressure"), "pressure",
-                           fmt::format("pressure must be a finite number in Pa, got {}",
-                                       io::describe_value(*f.node("pressure"))));
-                }
             } else {
                 ld.kind = LoadKind::Force;
                 ld.vector = f.vec2("force", std::nullopt, "N/m");
