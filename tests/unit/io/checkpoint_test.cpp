@@ -262,7 +262,64 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // phase's early reject) and box_reject (a test switch, default on) are not saved: neither
     // carries information between steps, and the reject does not change any result
     EXPECT_EQ(sizeof(ContactState), 800u) << "ContactState changed: update io/checkpoint.cpp";
-    EXPECT_EQ(sizeof(State), 1048u) << "State changed: update io/checkpoint.cpp";
+    // 1048 -> 1072: State::scratch_load (the load forces of the current step, rewritten at the
+    // start of every step from x^n; not saved)
+    EXPECT_EQ(sizeof(State), 1072u) << "State changed: update io/checkpoint.cpp";
+}
+
+// Loads (theory §4.1): the half of the load work that belongs after t^n travels in
+// work_external_pending, so a restart in the middle of a ramp is bitwise the uninterrupted run;
+// another load is another model.
+TEST(CheckpointLoads, RestartIsBitwiseIdenticalUnderAFollowerPressure) {
+    const std::string text = R"([simulation]
+end_time = 1.0
+dt = 1e-5
+[[material]]
+name = "m"
+density = 1000.0
+youngs_modulus = 1e9
+poisson_ratio = 0.25
+[[body]]
+name = "bar"
+mesh = "loaded_bar.geo"
+mesh_size = 0.05
+material = "m"
+[[load]]
+body = "bar"
+group = "right"
+pressure = 1e6
+time_function = "table"
+table = [[0, 0], [0.004, 1]]
+[[load]]
+body = "bar"
+group = "tip"
+force = [0, 1e4]
+)";
+    const Scenario sc = load_scenario_from_string(text, "loads.toml", FDEM_TEST_DATA_DIR);
+    const Model& m = sc.model;
+    State ref = make_state(m, sc.run.dt);
+    while (ref.step < 400)
+        step(m, ref);
+    State a = make_state(m, sc.run.dt);
+    while (a.step < 250)
+        step(m, a);
+    ASSERT_NE(a.energy.work_external_pending, 0.0);
+    const std::string path = temp_path("loads.fdck");
+    write_checkpoint(path, m, a, {});
+    State b = make_state(m, sc.run.dt);
+    RunProgress q;
+    read_checkpoint(path, m, b, q);
+    while (b.step < 400)
+        step(m, b);
+    EXPECT_TRUE(same_bits(ref.x, b.x));
+    EXPECT_TRUE(same_bits(ref.v, b.v));
+    EXPECT_EQ(std::memcmp(&ref.energy, &b.energy, sizeof(Energy)), 0);
+
+    std::string other = text;
+    other.replace(other.find("pressure = 1e6"), 14, "pressure = 2e6");
+    const Scenario sc2 = load_scenario_from_string(other, "loads.toml", FDEM_TEST_DATA_DIR);
+    EXPECT_NE(model_hash(sc2.model, sc.run.dt), model_hash(m, sc.run.dt));
+    fs::remove(path);
 }
 
 // Baseline A keeps its own history (couples with per-edge sliding distances): same contract.
