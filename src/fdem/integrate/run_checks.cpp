@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -12,7 +13,31 @@ namespace fdem {
 
 namespace {
 constexpr int64_t kEnergyCheckFirstStep = 16;  ///< first step at which the energy drift counts
+constexpr Real kEnergyFloorFraction = 1e-12;   ///< floor / largest energy (theory eq. 4.9)
 }  // namespace
+
+Real energy_floor(const Model& m) {
+    // elastic part: sum over movable triangles of A0 (lambda + 2 mu) / 2, the strain energy
+    // of a unit uniaxial strain; gravity part: every movable mass falling by the diagonal L of
+    // the model's bounding box (theory eq. 4.9)
+    Real elastic = 0;
+    for (TriId t = 0; t < m.num_tris(); ++t) {
+        if (m.bodies[m.tri_body[t]].fixed) continue;
+        const Material& mt = m.materials[m.tri_material[t]];
+        elastic += 0.5 * m.tri_area0[t] * (mt.lambda + 2.0 * mt.mu);
+    }
+    Real mass = 0;
+    Vec2 lo{std::numeric_limits<Real>::infinity(), std::numeric_limits<Real>::infinity()};
+    Vec2 hi = -1.0 * lo;
+    for (NodeId i = 0; i < m.num_nodes(); ++i) {
+        if (m.node_inv_mass[i] > 0) mass += m.node_mass[i];
+        lo = {std::min(lo.x, m.node_x0[i].x), std::min(lo.y, m.node_x0[i].y)};
+        hi = {std::max(hi.x, m.node_x0[i].x), std::max(hi.y, m.node_x0[i].y)};
+    }
+    const Real diag = m.num_nodes() > 0 ? norm(hi - lo) : 0.0;
+    const Real floor = kEnergyFloorFraction * (elastic + mass * norm(m.gravity) * diag);
+    return std::isfinite(floor) ? floor : 0.0;
+}
 
 std::string check_run(const Model& m, const State& s, const RunSettings& run, EnergyMonitor& mon) {
     const CheckSettings& c = run.checks;
@@ -56,8 +81,9 @@ std::string check_run(const Model& m, const State& s, const RunSettings& run, En
         mon.has_reference = true;
         mon.e0 = total;
     }
-    mon.scale = std::max({mon.scale, e.kinetic + e.strain + e.contact, std::abs(e.work_gravity),
-                          std::abs(e.work_external)});
+    if (!(mon.floor > 0)) mon.floor = energy_floor(m);  // derived from m: not checkpointed
+    mon.scale = std::max({mon.scale, mon.floor, e.kinetic + e.strain + e.contact,
+                          std::abs(e.work_gravity), std::abs(e.work_external)});
     const Real err = std::abs(total - mon.e0);
     mon.max_error = std::max(mon.max_error, err);
     if (!std::isfinite(total)) {

@@ -37,6 +37,9 @@ struct EnergyMonitor {
     Real e0 = 0;         ///< total energy after the first step [J/m]
     Real scale = 0;      ///< largest energy scale seen so far [J/m]
     Real max_error = 0;  ///< largest |E_total - E_0| so far [J/m]
+    /// absolute floor of scale, energy_floor() of the model (run_checks.hpp); derived from the
+    /// model at the first check, so not saved in checkpoints (0 = not yet computed) [J/m]
+    Real floor = 0;
 };
 
 /// CLI bookkeeping that must survive a restart so output continues where it stopped.
