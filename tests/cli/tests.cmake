@@ -67,3 +67,11 @@ add_test(NAME cli.determinism_threads
 # count changes the waiting only, never the results.
 set_tests_properties(cli.determinism_threads PROPERTIES LABELS input ENVIRONMENT GOMP_SPINCOUNT=1000
                      PASS_REGULAR_EXPRESSION "OK: 3 runs bitwise identical")
+
+# ---- loads: a pressure on a curve inside the body is refused at load (docs/scenario.md) -------
+add_test(NAME cli.load_inside_body_exits_2
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=2
+                 "-DARGS=run;${cli_dir}/bad_load.toml;--out;${cli_out}/bad_load"
+                 "-DREGEX=bad_load.toml:20:9: error: load on \"middle\" of body \"bar\": the edge from \\(0.5, 0[.0-9]*\\) to \\(0.5, [0-9.]+\\) m of physical group \"middle\" is inside \\(shared by two triangles\\) of body \"bar\", not on its boundary"
+                 -P ${cli_dir}/expect_exit.cmake)
+set_tests_properties(cli.load_inside_body_exits_2 PROPERTIES LABELS input)

@@ -44,7 +44,8 @@ TEST(TimeFunction, ConstantRampAndTable) {
 }
 
 // The unit square of tests/data/square_41_ascii.msh with one load on `group`.
-Scenario square_with(const std::string& load) {
+Scenario square_with(const std::string& load,
+                     const std::string& mesh = "square_41_ascii.msh") {
     return load_scenario_from_string(R"([simulation]
 end_time = 0.01
 dt = 1e-6
@@ -55,7 +56,7 @@ youngs_modulus = 1e9
 poisson_ratio = 0.25
 [[body]]
 name = "sq"
-mesh = "square_41_ascii.msh"
+mesh = ")" + mesh + R"("
 material = "m"
 [[load]]
 body = "sq"
@@ -90,6 +91,27 @@ TEST(LoadKernels, PressurePushesInwardWithItsEdgeLength) {
     EXPECT_NEAR(right.x, -3.0, 1e-12);
     EXPECT_NEAR(left.y, 0.0, 1e-12);
     EXPECT_NEAR(right.y, 0.0, 1e-12);
+}
+
+// On a mesh of 6-node triangles (composite elements) a 3-node line is loaded as its two halves,
+// the boundary edges of the sub-triangles: the side still gets p times its length, and its
+// mid-edge nodes carry a share.
+TEST(LoadKernels, PressureOnSecondOrderLinesLoadsTheHalfEdges) {
+    const Scenario sc = square_with("group = \"right\"\npressure = 3.0", "square_order2_41.msh");
+    const Model& m = sc.model;
+    ASSERT_EQ(m.bodies[0].element, ElementKind::Composite6);
+    const std::vector<Vec2> f = load_forces(m, m.node_x0, 0.0);
+    Vec2 right{0, 0};
+    int loaded = 0;
+    for (NodeId i = 0; i < m.num_nodes(); ++i) {
+        if (m.node_x0[i].x > 1 - 1e-12) {
+            right += f[i];
+            loaded += f[i].x < 0;
+        }
+    }
+    EXPECT_NEAR(right.x, -3.0, 1e-12);
+    EXPECT_NEAR(right.y, 0.0, 1e-12);
+    EXPECT_EQ(static_cast<size_t>(loaded), m.loads[0].edges.size() + 1);
 }
 
 // Follower: the pressure turns with the edge. Rotating the square by 90 degrees turns the force
