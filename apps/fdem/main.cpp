@@ -78,6 +78,29 @@ void print_summary(const fdem::Scenario& sc) {
                m.group_names.size());
     fmt::print("nodes      {}\ntriangles  {}\nmaterials  {}\n", m.num_nodes(), m.num_tris(),
                m.materials.size());
+    // loads (docs/scenario.md [[load]]): what was found on the group, so a wrong group shows
+    for (const fdem::Load& ld : m.loads) {
+        std::string what;
+        if (ld.kind == fdem::LoadKind::Force) {
+            what = fmt::format("force [{:g}, {:g}] N/m on {} node(s)", ld.vector.x, ld.vector.y,
+                               ld.nodes.size());
+        } else {
+            double length = 0;
+            for (const double l : ld.edge_length0)
+                length += l;
+            what = ld.kind == fdem::LoadKind::Pressure
+                       ? fmt::format("pressure {:g} Pa", ld.pressure)
+                       : fmt::format("traction [{:g}, {:g}] Pa", ld.vector.x, ld.vector.y);
+            what += fmt::format(" on {} edge(s), {:.4g} m", ld.edges.size(), length);
+        }
+        const fdem::TimeFunction& tf = ld.time_function;
+        const std::string when =
+            tf.kind == fdem::TimeFunction::Kind::Constant ? "constant"
+            : tf.kind == fdem::TimeFunction::Kind::Ramp
+                ? fmt::format("ramp over {:g} s", tf.ramp_time)
+                : fmt::format("table of {} points", tf.table.size());
+        fmt::print("load       {}: {}, {}\n", ld.name, what, when);
+    }
     if (sc.run.limiting_tri != fdem::kNone) {
         fmt::print("stable dt  {:.4g} s (limited by triangle {}, material \"{}\")\n",
                    sc.run.stable_dt, sc.run.limiting_tri,

@@ -75,3 +75,7 @@ add_test(NAME cli.load_inside_body_exits_2
                  "-DREGEX=bad_load.toml:20:9: error: load on \"middle\" of body \"bar\": the edge from \\(0.5, 0[.0-9]*\\) to \\(0.5, [0-9.]+\\) m of physical group \"middle\" is inside \\(shared by two triangles\\) of body \"bar\", not on its boundary"
                  -P ${cli_dir}/expect_exit.cmake)
 set_tests_properties(cli.load_inside_body_exits_2 PROPERTIES LABELS input)
+add_test(NAME cli.check_lists_loads
+         COMMAND fdem_cli check ${PROJECT_SOURCE_DIR}/examples/06_pressurised_ring/scenario.toml)
+set_tests_properties(cli.check_lists_loads PROPERTIES LABELS input
+  PASS_REGULAR_EXPRESSION "load       ring/outer: pressure 1e\\+07 Pa on 64 edge\\(s\\), 6.28[0-9] m, ramp over 0.005 s")
