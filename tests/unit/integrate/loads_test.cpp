@@ -114,6 +114,46 @@ TEST(LoadKernels, PressureOnSecondOrderLinesLoadsTheHalfEdges) {
     EXPECT_EQ(static_cast<size_t>(loaded), m.loads[0].edges.size() + 1);
 }
 
+// A body of more than kRenumberMinTris triangles is renumbered in space (model/renumber.cpp)
+// after the loads are read: their edges must follow. Every loaded node of the ring's outer rim
+// gets an inward radial force, and the forces add up to p times the rim's length.
+TEST(LoadKernels, EdgesFollowTheSpatialRenumbering) {
+    const Scenario sc = load_scenario_from_string(R"([simulation]
+end_time = 0.01
+dt = 1e-6
+[[material]]
+name = "m"
+density = 1000.0
+youngs_modulus = 1e9
+poisson_ratio = 0.25
+[[body]]
+name = "ring"
+mesh = "ring.geo"
+mesh_size = 0.03
+material = "m"
+[[load]]
+body = "ring"
+group = "outer"
+pressure = 2.0
+)",
+                                                  "ring.toml", FDEM_TEST_DATA_DIR);
+    const Model& m = sc.model;
+    ASSERT_GE(m.num_tris(), 4096);  // renumbered (model/renumber.hpp kRenumberMinTris)
+    const std::vector<Vec2> f = load_forces(m, m.node_x0, 0.0);
+    Real sum = 0, length = 0;
+    for (Real l : m.loads[0].edge_length0)
+        length += l;
+    for (NodeId i = 0; i < m.num_nodes(); ++i) {
+        const Real r = norm(m.node_x0[i]);
+        if (norm(f[i]) == 0) continue;
+        EXPECT_NEAR(r, 1.0, 1e-9) << "node " << i;
+        EXPECT_LT(dot(f[i], m.node_x0[i]) / r, -0.999 * norm(f[i])) << "node " << i;
+        sum += norm(f[i]);
+    }
+    EXPECT_NEAR(sum, 2.0 * length, 1e-3 * length);
+    EXPECT_NEAR(length, 2 * M_PI, 0.01);
+}
+
 // Follower: the pressure turns with the edge. Rotating the square by 90 degrees turns the force
 // on the (former) right side from -x to -y; the dead traction does not turn.
 TEST(LoadKernels, PressureFollowsTheCurrentEdgeTractionDoesNot) {
