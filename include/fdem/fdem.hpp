@@ -10,3 +10,4 @@
 #include "fdem/scenario.hpp"
 #include "fdem/simulate.hpp"
 #include "fdem/state.hpp"
+#include "fdem/version.hpp"

@@ -1,6 +1,8 @@
 // The time step (docs/architecture.md): a pipeline of free functions over Model and State.
 #pragma once
 
+#include <cstdint>
+
 #include "fdem/model.hpp"
 #include "fdem/state.hpp"
 
@@ -16,5 +18,10 @@ void step(const Model& m, State& s);
 /// Stop on NaN/Inf, inverted triangles or runaway velocity: throws SimulationError naming
 /// step, time, entity and a remedy.
 void check_state(const Model& m, const State& s);
+
+/// FNV-1a over the bytes of x, v and the energies: equal hashes mean bitwise equal states. The
+/// hash `fdem run` prints at the end of a run (`--print-hash`), so a program stepping the same
+/// scenario through this API can compare its result with the CLI's.
+uint64_t state_hash(const State& s);
 
 }  // namespace fdem

@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 
 #include "fdem/error.hpp"
+#include "fdem/simulate.hpp"
+#include "fdem/version.hpp"
 #include "io/atomic_file.hpp"
 
 namespace fdem {

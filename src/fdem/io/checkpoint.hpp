@@ -55,9 +55,6 @@ struct RunProgress {
 /// and of dt. End time and output settings are not included: a restart may change them.
 uint64_t model_hash(const Model& m, Real dt);
 
-/// FNV-1a over the bytes of x, v and the energies: equal hashes mean bitwise equal states.
-uint64_t state_hash(const State& s);
-
 /// Write a checkpoint atomically (temporary file, then rename). Throws SimulationError naming
 /// the file if it cannot be written.
 void write_checkpoint(const std::string& path, const Model& m, const State& s,

@@ -17,6 +17,7 @@
 #include "fdem/error.hpp"
 #include "fdem/scenario.hpp"
 #include "fdem/simulate.hpp"
+#include "fdem/version.hpp"
 #include "support/scenes.hpp"
 
 namespace fdem {
