@@ -7,7 +7,10 @@
 // checkpoint (128 + signal number, the shell convention).
 #include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
+#include <cstdio>
+#include <cstring>
 #include <memory>
 
 #include <algorithm>
@@ -50,7 +53,9 @@ void install_signal_handlers() {
 struct RunOptions {
     std::string scenario;
     std::string out;
+    bool out_given = false;
     double end_time = -1;
+    bool end_time_given = false;
     int threads = 0;
     bool quiet = false;
     double checkpoint_every = 0;  ///< simulated seconds between checkpoints; 0 = none
@@ -113,17 +118,94 @@ void print_summary(const fdem::Scenario& sc) {
     fmt::print("end time   {:.6g} s ({} steps)\n", sc.run.end_time,
                static_cast<long long>(std::ceil(sc.run.end_time / sc.run.dt - 1e-9)));
     fmt::print("memory     {:.2f} MB (model + state, estimate)\n", memory_estimate(m) / 1e6);
+
+    // contact: which algorithm and why; which bodies it sees (two fixed bodies never interact)
+    const char* alg = m.contact.algorithm == fdem::ContactAlgorithm::Smooth ? "smooth"
+                      : m.contact.algorithm == fdem::ContactAlgorithm::LegacyTriangle
+                          ? "legacy-triangle"
+                      : m.contact.algorithm == fdem::ContactAlgorithm::LegacyBoundary
+                          ? "legacy-boundary"
+                          : "none";
+    const size_t movable = m.bodies.size() - fixed;
+    const bool on = m.contact.algorithm != fdem::ContactAlgorithm::None;
+    std::string why;
+    if (sc.contact_default) {
+        why = on ? "default without [contact]: two or more bodies, at least one movable; "
+                   "[contact] algorithm = \"none\" switches it off"
+                 : (m.bodies.size() < 2 ? "default without [contact]: one body"
+                                        : "default without [contact]: every body is fixed");
+    } else {
+        why = "[contact] algorithm";
+    }
+    fmt::print("contact    {} ({})\n", alg, why);
+
+    // every body: id, entry name, triangles, mass, contact (long lists are cut after 200 rows)
+    constexpr size_t kMaxRows = 200;
+    fmt::print("body list  id  name  triangles  mass [kg/m]  fixed  contact\n");
+    for (size_t b = 0; b < m.bodies.size() && b < kMaxRows; ++b) {
+        const fdem::Body& body = m.bodies[b];
+        double mass = 0;
+        for (fdem::NodeId n = body.node_begin; n < body.node_end; ++n)
+            mass += m.node_mass[static_cast<size_t>(n)];
+        const bool seen = on && m.bodies.size() >= 2 && (!body.fixed || movable > 0);
+        fmt::print("  {:>6}  \"{}\"  {}  {:.6g}  {}  {}\n", b, body.name, body.tri_end - body.tri_begin,
+                   mass, body.fixed ? "yes" : "no",
+                   seen ? "yes"
+                   : !on ? "no (contact off)"
+                         : "no (nothing that moves can reach it)");
+    }
+    if (m.bodies.size() > kMaxRows) {
+        fmt::print("  ... {} more bodies (ids {} to {}; their names, ids and masses are in every "
+                   "VTU frame)\n",
+                   m.bodies.size() - kMaxRows, kMaxRows, m.bodies.size() - 1);
+    }
 }
+
+void print_warnings(const fdem::Scenario& sc) {
+    for (const std::string& w : sc.warnings)
+        fmt::print(stderr, "{}\n", w);
+}
+
+/// CLI validator: a finite number > 0 (CLI::PositiveNumber lets nan through, and prints
+/// DBL_MAX in full as its bound).
+const CLI::Validator kFinitePositive(
+    [](const std::string& text) -> std::string {
+        double v = 0;
+        try {
+            size_t used = 0;
+            v = std::stod(text, &used);
+            if (used != text.size()) return fmt::format("expected a number in s, got '{}'", text);
+        } catch (...) {
+            return fmt::format("expected a number in s, got '{}'", text);
+        }
+        if (!std::isfinite(v) || !(v > 0)) {
+            return fmt::format("expected a finite number of seconds > 0, got {}", text);
+        }
+        return {};
+    },
+    "SECONDS > 0", "finite positive");
 
 int run(const RunOptions& opt) {
     using clock = std::chrono::steady_clock;
     fdem::Scenario sc = fdem::load_scenario(opt.scenario);
-    if (opt.end_time > 0) sc.run.end_time = opt.end_time;
-    if (!opt.out.empty()) sc.run.output.dir = opt.out;
+    if (opt.end_time_given) {
+        sc.run.end_time = opt.end_time;
+        fdem::check_step_count(sc.run, {"--end-time", 0, 0}, "--end-time");
+        for (const fdem::VelocityKick& k : sc.model.kicks) {
+            if (k.time >= sc.run.end_time) {
+                sc.warnings.push_back(fmt::format(
+                    "warning: --end-time {:g} s ends the run before the kick of body \"{}\" at "
+                    "t = {:g} s",
+                    sc.run.end_time, sc.model.group_names[static_cast<size_t>(k.group)], k.time));
+            }
+        }
+    }
+    if (opt.out_given) sc.run.output.dir = opt.out;
     if (opt.threads > 0) omp_set_num_threads(opt.threads);
     const fdem::Model& m = sc.model;
     const bool tty = isatty(STDERR_FILENO) && !opt.quiet;
     if (!opt.quiet) print_summary(sc);
+    print_warnings(sc);
 
     namespace fs = std::filesystem;
     const fs::path out = sc.run.output.dir;
@@ -134,6 +216,21 @@ int run(const RunOptions& opt) {
             {sc.path, 0, 0}, "output.dir",
             fmt::format("cannot create output folder '{}': {}", out.string(), ec.message()));
     }
+    {
+        // a folder that exists but cannot be written is an input problem, found before step 0
+        const fs::path probe = out / ".fdem_write_test";
+        std::FILE* f = std::fopen(probe.c_str(), "w");
+        const int err = errno;
+        if (f == nullptr) {
+            throw fdem::InputError(
+                {opt.out_given ? std::string("--out") : sc.path, 0, 0}, "output.dir",
+                fmt::format("cannot write into the output folder '{}': {}; expected a writable "
+                            "folder ([output] dir or --out)",
+                            out.string(), std::strerror(err)));
+        }
+        std::fclose(f);
+        fs::remove(probe, ec);
+    }
     const std::string checkpoint_path = (out / "checkpoint.fdck").string();
 
     // fresh state, or the state and output bookkeeping of a checkpoint
@@ -143,6 +240,26 @@ int run(const RunOptions& opt) {
         fdem::read_checkpoint(opt.restart, m, s, prog);
         if (!opt.quiet) {
             fmt::print("restart    {} at step {} (t = {:.6g} s)\n", opt.restart, s.step, s.time);
+        }
+        // continuing into another folder: the frames and history rows written before the
+        // checkpoint stay next to it; series.pvd refers to those frames by a relative path and
+        // history.csv starts with the old rows, so the new folder describes the whole run
+        const fs::path from = fs::absolute(fs::path(opt.restart)).parent_path();
+        if (!fs::equivalent(from, out, ec)) {
+            for (auto& [t, file] : prog.frames) {
+                if (fs::exists(out / file, ec)) continue;
+                if (fs::exists(from / file, ec)) {
+                    file = fs::relative(from / file, fs::absolute(out)).string();
+                } else {
+                    fmt::print(stderr,
+                               "warning: frame {} (t = {:.6g} s) of the run before the restart "
+                               "is not in {} nor in {}; series.pvd lists it anyway\n",
+                               file, t, from.string(), out.string());
+                }
+            }
+            if (!fs::exists(out / "history.csv", ec) && fs::exists(from / "history.csv", ec)) {
+                fs::copy_file(from / "history.csv", out / "history.csv", ec);
+            }
         }
     }
     std::unique_ptr<fdem::HistoryWriter> history =
@@ -283,16 +400,22 @@ int main(int argc, char** argv) {
     RunOptions ro;
     auto* run_cmd = app.add_subcommand("run", "run a scenario");
     run_cmd->add_option("scenario", ro.scenario, "scenario file (TOML)")->required();
-    run_cmd->add_option("--out", ro.out, "output folder (default: [output] dir of the scenario)");
+    run_cmd
+        ->add_option("--out", ro.out, "output folder (default: [output] dir of the scenario)")
+        ->check(CLI::Validator(
+            [](const std::string& v) -> std::string {
+                return v.empty() ? "expected a non-empty folder path, got \"\"" : "";
+            },
+            "DIR", "non-empty"));
     run_cmd->add_option("--end-time", ro.end_time, "override the end time [s]")
-        ->check(CLI::PositiveNumber);
+        ->check(kFinitePositive);
     run_cmd->add_option("--threads", ro.threads, "OpenMP threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
     run_cmd->add_flag("--quiet", ro.quiet, "no summary and no progress line");
     run_cmd
         ->add_option("--checkpoint-every", ro.checkpoint_every,
                      "write OUT/checkpoint.fdck every T simulated seconds and at the end")
-        ->check(CLI::PositiveNumber);
+        ->check(kFinitePositive);
     run_cmd->add_option("--restart", ro.restart,
                         "continue from a checkpoint written for the same scenario");
     run_cmd->add_flag("--print-hash", ro.print_hash,
@@ -309,10 +432,14 @@ int main(int argc, char** argv) {
         return code == 0 ? 0 : kExitInput;
     }
 
+    ro.out_given = run_cmd->count("--out") > 0;
+    ro.end_time_given = run_cmd->count("--end-time") > 0;
     try {
         if (*run_cmd) return run(ro);
         if (*check_cmd) {
-            print_summary(fdem::load_scenario(check_path));
+            const fdem::Scenario sc = fdem::load_scenario(check_path);
+            print_summary(sc);
+            print_warnings(sc);
             return 0;
         }
     } catch (const fdem::InputError& e) {

@@ -83,7 +83,13 @@ struct LegacyBoundaryTri {
 struct ContactModel {
     ContactAlgorithm algorithm = ContactAlgorithm::None;
     ContactParams params;                    ///< default for every material pair
-    std::vector<ContactParams> pair_params;  ///< num_materials^2, [a * n + b]; symmetric
+    /// law of one ordered material pair (contactor material a, target material b), set by a
+    /// [[contact.pair]] entry (the reader adds both orders); pairs without one use `params`
+    struct PairOverride {
+        int32_t a = 0, b = 0;
+        ContactParams params;
+    };
+    std::vector<PairOverride> pair_overrides;  ///< only the pairs that are set (not n^2)
     Real buffer = 0;                         ///< broad-phase skin b [m]; 0 = 0.2 h_min
     /// true: every body is both contactor and target of every other body (spec §4.5-9).
     /// false (one-way): each pair of bodies is evaluated once. If exactly one of the two is
@@ -99,9 +105,13 @@ struct ContactModel {
     CompositeSpecialCase composite_special_case = CompositeSpecialCase::Fan;
 
     // ---- derived (build_contact_topology) -------------------------------------------------
-    /// pair_params resolved: num_materials^2 entries, every default filled in. Indexed by
-    /// [material of contactor body * num_materials + material of target body].
+    /// Laws resolved (every default filled in) per pair of material classes: class 0 = every
+    /// material in no override, classes 1..k = the materials named in pair_overrides. Indexed
+    /// [class of contactor material * num_classes + class of target material]; (k + 1)^2
+    /// entries, so 20 000 materials with a few overrides cost a few entries, not 4e8.
     std::vector<ContactParams> resolved;
+    std::vector<int32_t> material_class;  ///< per material
+    int32_t num_classes = 0;
     int32_t num_materials = 0;
     Real h_min = 0;  ///< smallest element altitude of the mesh [m]
 
@@ -180,7 +190,9 @@ inline bool is_contactor_for(const ContactModel& cm, BodyId c, BodyId t) {
 
 /// Resolved parameters for contactor body material a and target body material b.
 inline const ContactParams& pair_parameters(const ContactModel& cm, int32_t a, int32_t b) {
-    return cm.resolved[static_cast<size_t>(a * cm.num_materials + b)];
+    return cm.resolved[static_cast<size_t>(cm.material_class[static_cast<size_t>(a)] *
+                                               cm.num_classes +
+                                           cm.material_class[static_cast<size_t>(b)])];
 }
 
 }  // namespace fdem

@@ -59,6 +59,21 @@ struct MeshData {
 /// triangles, 2- and 3-node lines, points. Throws InputError naming the file on any failure.
 MeshData read_mesh(const std::string& path, Real mesh_size = 0, int order = 1);
 
+/// Limits on meshing a .geo ([[body]] max_triangles, mesh_time_limit; docs/scenario.md).
+struct MeshLimits {
+    /// refuse a .geo whose estimated triangle count 2 A / mesh_size^2 (A: area of the bounding
+    /// box of its surfaces) is larger, before Gmsh meshes it (Gmsh 4.8 aborts the process from
+    /// its own threads when it runs out of memory)
+    Real max_triangles = 2e6;
+    /// wall-clock seconds Gmsh may spend on reading and meshing a .geo; beyond, the process
+    /// prints an InputError-style message and exits with code 2 (Gmsh cannot be interrupted)
+    Real time_limit = 600;
+};
+
+/// read_mesh with limits; an estimate above limits.max_triangles is an InputError with key
+/// "max_triangles".
+MeshData read_mesh(const std::string& path, Real mesh_size, int order, const MeshLimits& limits);
+
 /// Structured rectangle [x0, x0+w] x [y0, y0+h] with nx x ny cells, each split into two
 /// right triangles (alternating diagonals when alternate = true). Physical groups (dim 1):
 /// "bottom", "right", "top", "left"; triangles carry tag 1 named "domain".

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "fdem/error.hpp"
 #include "fdem/model.hpp"
 
 namespace fdem {
@@ -31,6 +32,12 @@ struct RunSettings {
     Real end_time = 0;           ///< [s]
     Real stable_dt = 0;          ///< stable limit computed at load [s]
     TriId limiting_tri = kNone;  ///< element setting the stable limit
+    /// largest planned step count ([simulation] max_steps): more is an input error (item 8 of
+    /// issue #12: a unit slip in end_time, dt, E, density or penalty plans 10^11+ steps)
+    Real max_steps = 1e8;
+    /// why dt has its value, for messages: "dt = \"auto\" = 0.5 x the stable limit ... of
+    /// triangle 4 ... (youngs_modulus = ..., density = ...)" or "dt = 1e-06 s (given)"
+    std::string dt_cause;
     OutputSettings output;
     CheckSettings checks;
 };
@@ -39,7 +46,23 @@ struct Scenario {
     std::string path;  ///< the scenario file (or virtual name)
     Model model;
     RunSettings run;
+    /// legal but surely unintended input (printed by `fdem run` and `fdem check`), each
+    /// "file:line:column: warning: ..."
+    std::vector<std::string> warnings;
+    /// true: the scenario has no [contact] table and contact is the default (smooth with the
+    /// documented defaults when two bodies can meet, none otherwise)
+    bool contact_default = false;
 };
+
+/// Steps `fdem run` takes for run.end_time and run.dt: ceil(end_time / dt - 1e-9), as a double
+/// so that an overflow of the integer step counter shows (1e300 s / 1e-5 s).
+Real planned_steps(const RunSettings& run);
+
+/// Refuse a run of fewer than one step (end_time < dt) or more than run.max_steps steps: an
+/// InputError at `where` (the end_time key, or "--end-time") naming end_time, dt, the step
+/// count and what set dt (run.dt_cause).
+void check_step_count(const RunSettings& run, const SourceLocation& where, const std::string& key,
+                      const std::string& source_line = {});
 
 /// Read, validate and build a scenario. Relative mesh paths are resolved against the scenario's
 /// folder. Throws InputError (file:line:column, key, value, expectation) on any bad input.

@@ -66,11 +66,13 @@ void resolve_params(Model& m) {
     ContactModel& cm = m.contact;
     const int32_t nm = static_cast<int32_t>(m.materials.size());
     cm.num_materials = nm;
-    if (!cm.pair_params.empty() && cm.pair_params.size() != static_cast<size_t>(nm * nm)) {
-        throw InputError(SourceLocation{}, "contact.pair_params",
-                         fmt::format("contact pair parameters: expected {} entries "
-                                     "(num_materials^2), got {}",
-                                     nm * nm, cm.pair_params.size()));
+    for (const ContactModel::PairOverride& o : cm.pair_overrides) {
+        if (o.a < 0 || o.a >= nm || o.b < 0 || o.b >= nm) {
+            throw InputError(SourceLocation{}, "contact.pair_overrides",
+                             fmt::format("contact pair override ({}, {}): material index outside "
+                                         "0 .. {}",
+                                         o.a, o.b, nm - 1));
+        }
     }
     Real e_min = std::numeric_limits<Real>::infinity();
     for (const Material& mat : m.materials)
@@ -84,15 +86,39 @@ void resolve_params(Model& m) {
         cm.params = resolve(cm.params, e_min);
         check_params(cm.params, "");
     }
-    cm.resolved.resize(static_cast<size_t>(nm * nm));
-    for (int32_t a = 0; a < nm; ++a) {
-        for (int32_t b = 0; b < nm; ++b) {
-            const size_t k = static_cast<size_t>(a * nm + b);
-            const Real e = std::min(m.materials[a].youngs_modulus, m.materials[b].youngs_modulus);
-            cm.resolved[k] = cm.pair_params.empty() ? cm.params : resolve(cm.pair_params[k], e);
-            check_params(cm.resolved[k], fmt::format(" of materials \"{}\" / \"{}\"",
-                                                     m.materials[a].name, m.materials[b].name));
+    // classes: 0 for materials in no override, 1.. in order of first appearance
+    cm.material_class.assign(static_cast<size_t>(nm), 0);
+    std::vector<int32_t> class_material = {-1};
+    for (const ContactModel::PairOverride& o : cm.pair_overrides) {
+        for (const int32_t mat : {o.a, o.b}) {
+            if (cm.material_class[static_cast<size_t>(mat)] == 0) {
+                cm.material_class[static_cast<size_t>(mat)] =
+                    static_cast<int32_t>(class_material.size());
+                class_material.push_back(mat);
+            }
         }
+    }
+    const int32_t nc = static_cast<int32_t>(class_material.size());
+    if (static_cast<int64_t>(nc) * nc > 10'000'000) {
+        throw InputError(SourceLocation{}, "contact.pair",
+                         fmt::format("[[contact.pair]] entries name {} different materials; the "
+                                     "resolved table would need {}^2 entries; expected at most "
+                                     "3161 materials in contact pairs",
+                                     nc - 1, nc));
+    }
+    cm.num_classes = nc;
+    cm.resolved.assign(static_cast<size_t>(nc) * static_cast<size_t>(nc), cm.params);
+    for (const ContactModel::PairOverride& o : cm.pair_overrides) {
+        const size_t k = static_cast<size_t>(cm.material_class[static_cast<size_t>(o.a)]) *
+                             static_cast<size_t>(nc) +
+                         static_cast<size_t>(cm.material_class[static_cast<size_t>(o.b)]);
+        const Real e = std::min(m.materials[static_cast<size_t>(o.a)].youngs_modulus,
+                                m.materials[static_cast<size_t>(o.b)].youngs_modulus);
+        cm.resolved[k] = resolve(o.params, e);
+        check_params(cm.resolved[k],
+                     fmt::format(" of materials \"{}\" / \"{}\"",
+                                 m.materials[static_cast<size_t>(o.a)].name,
+                                 m.materials[static_cast<size_t>(o.b)].name));
     }
 }
 

@@ -383,6 +383,7 @@ uint64_t model_hash(const Model& m, Real dt) {
     put(h, static_cast<uint64_t>(c.resolved.size()));
     for (const ContactParams& p : c.resolved)
         put(h, p);
+    put(h, c.material_class);
     put(h, c.buffer);
     put(h, c.two_way);
     put(h, c.m_bar);

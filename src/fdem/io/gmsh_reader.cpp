@@ -7,6 +7,12 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <thread>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -89,6 +95,41 @@ bool is_msh(const std::string& path) {
     throw InputError({path, line, 0}, "", msg, file_line(path, line));
 }
 
+/// A .msh file that ends inside a section (the last "$Name" line has no "$EndName" after it):
+/// an InputError at that header saying the file is truncated; nothing if the file is complete.
+/// Gmsh's own message for such a file is often only "Error loading 'file.msh'".
+void check_truncated(const std::string& path, const std::string& gmsh_text) {
+    std::ifstream in(path, std::ios::binary);
+    std::string s, open_name;
+    int open_line = 0;
+    for (int i = 1; std::getline(in, s); ++i) {
+        if (!s.empty() && s.back() == '\r') {
+            s.pop_back();
+        }
+        if (s.size() < 2 || s[0] != '$') {
+            continue;
+        }
+        if (s.rfind("$End", 0) == 0) {
+            if (s.substr(4) == open_name) {
+                open_name.clear();
+            }
+        } else if (std::all_of(s.begin() + 1, s.end(),
+                               [](unsigned char c) { return std::isalnum(c) != 0; })) {
+            open_name = s.substr(1);
+            open_line = i;
+        }
+    }
+    if (!open_name.empty()) {
+        throw InputError({path, open_line, 0}, "",
+                         fmt::format("cannot read mesh file '{}': the file ends inside section "
+                                     "${} (no ${} follows): it is truncated or incomplete; write "
+                                     "it again (Gmsh: File > Export, or gmsh -2){}",
+                                     path, open_name, "End" + open_name,
+                                     gmsh_text.empty() ? "" : " (Gmsh: " + gmsh_text + ")"),
+                         file_line(path, open_line));
+    }
+}
+
 /// Turn a Gmsh error text into an InputError naming the file and, when Gmsh says it, the line.
 /// Gmsh reports .geo errors as "'file.geo', line 7: syntax error (;)".
 [[noreturn]] void fail_from_gmsh(const std::string& path, std::string text) {
@@ -97,6 +138,9 @@ bool is_msh(const std::string& path) {
     }
     if (text.rfind("Error: ", 0) == 0) {
         text = text.substr(7);
+    }
+    if (is_msh(path)) {
+        check_truncated(path, text);
     }
     static const std::regex with_line(R"('([^']*)', line (\d+)\s*:\s*(.*))");
     std::smatch m;
@@ -190,6 +234,12 @@ void extract(MeshData& mesh) {
                             fmt::format("mesh file '{}': node {} has z = {:g}; fdem is 2-D and "
                                         "needs every node in the plane z = 0",
                                         path, node_tags[i], z));
+        }
+        if (!std::isfinite(coord[3 * i]) || !std::isfinite(coord[3 * i + 1])) {
+            fail_at_section(path, "$Nodes",
+                            fmt::format("mesh file '{}': node {} has the coordinates ({:g}, {:g}); "
+                                        "expected finite numbers in m",
+                                        path, node_tags[i], coord[3 * i], coord[3 * i + 1]));
         }
         mesh.nodes[i] = {coord[3 * i], coord[3 * i + 1]};
         node_id[node_tags[i]] = static_cast<int32_t>(i);
@@ -387,6 +437,46 @@ void extract(MeshData& mesh) {
 }  // namespace
 
 MeshData read_mesh(const std::string& path, Real mesh_size, int order) {
+    return read_mesh(path, mesh_size, order, MeshLimits{});
+}
+
+namespace {
+
+/// Ends the process with exit code 2 and `message` on stderr unless destroyed within `seconds`
+/// (Gmsh 4.8 has no time limit of its own and cannot be interrupted safely from outside).
+class Watchdog {
+public:
+    Watchdog(Real seconds, std::string message)
+        : thread_([this, seconds, msg = std::move(message)] {
+              std::unique_lock<std::mutex> lock(mutex_);
+              if (!cv_.wait_for(lock, std::chrono::duration<double>(seconds),
+                                [this] { return done_; })) {
+                  std::fputs(msg.c_str(), stderr);
+                  std::fflush(stderr);
+                  std::_Exit(2);
+              }
+          }) {}
+    ~Watchdog() {
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            done_ = true;
+        }
+        cv_.notify_all();
+        thread_.join();
+    }
+    Watchdog(const Watchdog&) = delete;
+    Watchdog& operator=(const Watchdog&) = delete;
+
+private:
+    std::mutex mutex_;
+    std::condition_variable cv_;
+    bool done_ = false;
+    std::thread thread_;
+};
+
+}  // namespace
+
+MeshData read_mesh(const std::string& path, Real mesh_size, int order, const MeshLimits& limits) {
     MeshData mesh;
     mesh.file = path;
 
@@ -425,6 +515,16 @@ MeshData read_mesh(const std::string& path, Real mesh_size, int order) {
         io::precheck_msh(path);  // Gmsh 4.8 crashes on some malformed MSH 2 element lines
     }
     const std::lock_guard<std::mutex> lock(gmsh_mutex());
+    std::unique_ptr<Watchdog> watchdog;
+    if (ext == ".geo") {
+        watchdog = std::make_unique<Watchdog>(
+            limits.time_limit,
+            fmt::format("{}: error: Gmsh did not finish reading and meshing '{}' within "
+                        "{:g} s ([[body]] mesh_time_limit); the .geo may loop forever, or the mesh "
+                        "is too fine: check the file, a coarser mesh_size, or raise "
+                        "mesh_time_limit\n",
+                        path, path, limits.time_limit));
+    }
     GmshSession session;
     try {
         gmsh::open(path);
@@ -434,6 +534,24 @@ MeshData read_mesh(const std::string& path, Real mesh_size, int order) {
         if (ext == ".geo") {
             if (mesh_size > 0) {
                 gmsh::option::setNumber("Mesh.MeshSizeMax", mesh_size);
+                // estimate before meshing: a too-fine mesh makes Gmsh abort the process from its
+                // own threads after minutes, where no handler reaches (issue #12 item 7)
+                double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
+                gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+                const double area = std::max(0.0, x1 - x0) * std::max(0.0, y1 - y0);
+                const double estimate = 2.0 * area / (mesh_size * mesh_size);
+                if (std::isfinite(area) && estimate > limits.max_triangles) {
+                    throw InputError(
+                        {path, 0, 0}, "max_triangles",
+                        fmt::format("mesh_size = {:g} m on '{}' (bounding box {:g} m x {:g} m) "
+                                    "makes about {:.3g} triangles (2 x area / mesh_size^2), more "
+                                    "than max_triangles = {:g}; expected a coarser mesh_size "
+                                    "(>= {:.3g} m), or raise [[body]] max_triangles if this mesh "
+                                    "is intended",
+                                    mesh_size, path, x1 - x0, y1 - y0, estimate,
+                                    limits.max_triangles,
+                                    std::sqrt(2.0 * area / limits.max_triangles)));
+                }
             }
             gmsh::model::mesh::generate(2);
             if (order == 2) {

@@ -160,7 +160,7 @@ public:
         read_loads(root, sc.model);
         read_kicks(root, sc.model);
         read_damping(root, sc.model);
-        read_contact(root, sc.model);
+        read_contact(root, sc);
 
         // derived data (the model builder's own checks keep their messages)
         try {
@@ -172,6 +172,9 @@ public:
             throw InputError({src_.name, 0, 0}, e.key(), e.message());
         }
         choose_dt(sc);
+        check_step_count(sc.run, end_time_loc_, "simulation.end_time",
+                         src_.line(end_time_loc_.line));
+        check_times(sc);
         return sc;
     }
 
@@ -184,9 +187,16 @@ private:
                              "missing required table [simulation] (end_time, dt)");
         }
         Fields f(src_, *t, "[simulation]", "simulation",
-                 {"end_time", "dt", "dt_fraction", "gravity"});
+                 {"end_time", "dt", "dt_fraction", "gravity", "max_steps"});
         RunSettings& run = sc.run;
         run.end_time = f.real("end_time", std::nullopt, "s", Bounds::positive());
+        end_time_loc_ = f.location("end_time");
+        run.max_steps = f.real("max_steps", run.max_steps, "", Bounds::at_least(1.0));
+        if (!std::isfinite(run.max_steps) || run.max_steps > 9e18) {
+            f.fail(*f.node("max_steps"), "max_steps",
+                   fmt::format("[simulation]: max_steps must be a step count in [1, 9e18], got {}",
+                               run.max_steps));
+        }
 
         // dt: a positive number or "auto"
         const toml::node* dt = f.node("dt");
@@ -220,6 +230,7 @@ private:
         Fields f(src_, *t, "[output]", "output", {"interval", "dir", "vtu"});
         OutputSettings& o = sc.run.output;
         o.interval = f.real("interval", 0.0, "s", Bounds::positive());
+        interval_loc_ = f.location("interval");
         o.dir = f.string("dir", std::string("out"));
         o.vtu = f.boolean("vtu", true);
     }
@@ -299,11 +310,22 @@ private:
                    fmt::format("mesh must be a Gmsh .msh or .geo file, got \"{}\"", rel));
         }
         Real size = 0;
+        MeshLimits limits;
         if (ext == ".geo") {
             size = f.real("mesh_size", std::nullopt, "m", Bounds::positive());
-        } else if (f.has("mesh_size")) {
-            f.fail(*f.node("mesh_size"), "mesh_size",
-                   "mesh_size only applies to .geo files (a .msh file is already meshed)");
+            limits.max_triangles =
+                f.real("max_triangles", limits.max_triangles, "", Bounds::at_least(1.0));
+            limits.time_limit =
+                f.real("mesh_time_limit", limits.time_limit, "s", Bounds::positive());
+        } else {
+            for (const char* k : {"mesh_size", "max_triangles", "mesh_time_limit"}) {
+                if (f.has(k)) {
+                    f.fail(*f.node(k), k,
+                           fmt::format("{} only applies to .geo files (a .msh file is already "
+                                       "meshed)",
+                                       k));
+                }
+            }
         }
         std::error_code ec;
         if (!fs::exists(path, ec)) {
@@ -322,7 +344,14 @@ private:
         lm.path = path;
         lm.size = size;
         lm.order = order;
-        lm.data = read_mesh(path, size, order);
+        try {
+            lm.data = read_mesh(path, size, order, limits);
+        } catch (const InputError& e) {
+            if (e.key() != "max_triangles") throw;
+            throw InputError(f.location("mesh_size"), f.full_key("mesh_size"),
+                             fmt::format("{}: {}", f.context(), e.message()),
+                             src_.line(f.location("mesh_size").line));
+        }
         lm.tri_owner.assign(lm.data.tris.size(), -1);
         meshes_.push_back(std::move(lm));
         return static_cast<int>(meshes_.size() - 1);
@@ -338,7 +367,7 @@ private:
                      fmt::format("body[{}]", i),
                      {"name", "mesh", "mesh_size", "group", "material", "velocity", "fixed",
                       "element", "pieces", "angular_velocity", "velocity_gradient", "origin",
-                      "piece_motion"});
+                      "piece_motion", "max_triangles", "mesh_time_limit"});
             BodyEntry entry;
             entry.name = f.string("name", std::nullopt);
             entry.table = tables[i];
@@ -355,6 +384,12 @@ private:
             opt.material = material_index(f, "material");
             opt.velocity = f.vec2("velocity", Vec2{0, 0}, "m/s");
             opt.fixed = f.boolean("fixed", false);
+            if (opt.fixed && f.has("velocity")) {
+                f.fail(*f.node("velocity"), "velocity",
+                       "velocity contradicts fixed = true (a fixed body keeps every node at its "
+                       "initial position); remove velocity, or fixed and prescribe the motion "
+                       "with a [[boundary]] velocity");
+            }
             read_velocity_field(f, opt);
             // element formulation (docs/scenario.md): omitted = from the mesh (6-node triangles
             // -> composite, 3-node -> cst); "composite" meshes a .geo at order 2
@@ -386,6 +421,16 @@ private:
                     }
                 }
                 if (!pg) {
+                    for (const PhysicalGroup& cand : lm.data.groups) {
+                        if (cand.name == g) {
+                            f.fail(*f.node("group"), "group",
+                                   fmt::format("\"{}\" is a {} physical group of mesh '{}', "
+                                               "but a body is made of triangles: expected a "
+                                               "surface group (Physical Surface); {}",
+                                               g, group_kind(cand.dim), lm.path,
+                                               available_groups(lm.data)));
+                        }
+                    }
                     const std::string guess = io::closest(g, group_names(lm.data));
                     f.fail(*f.node("group"), "group",
                            fmt::format(
@@ -561,6 +606,13 @@ private:
         }
     }
 
+    static NodeId first_node(const BodyEntry& e) {
+        for (const NodeId n : e.node_map) {
+            if (n != kNone) return n;
+        }
+        return 0;
+    }
+
     int body_index(const Fields& f, std::string_view key) const {
         const std::string name = f.string(key, std::nullopt);
         std::vector<std::string> names;
@@ -609,6 +661,10 @@ private:
             } else {
                 bc.velocity = f.vec2("velocity", std::nullopt, "m/s");
                 f.components("components", std::pair{true, true}, bc.has_x, bc.has_y);
+                const Real vx = bc.has_x ? bc.velocity.x : 0.0, vy = bc.has_y ? bc.velocity.y : 0.0;
+                boundary_speeds_.push_back({f.location("velocity"), f.full_key("velocity"),
+                                            f.context(), std::sqrt(vx * vx + vy * vy),
+                                            entry.table});
             }
             bc.start = f.real("start", 0.0, "s", Bounds::non_negative());
             bc.end =
@@ -881,6 +937,8 @@ private:
             f.set_context(
                 fmt::format("kick of body \"{}\"", bodies_[static_cast<size_t>(k.group)].name));
             k.time = f.real("time", std::nullopt, "s", Bounds::non_negative());
+            kick_entries_.push_back(
+                {f.location("time"), f.full_key("time"), f.context(), k.time});
             k.velocity = f.vec2("velocity", std::nullopt, "m/s");
             f.components("components", std::pair{true, true}, k.has_x, k.has_y);
             m.kicks.push_back(k);
@@ -931,10 +989,18 @@ private:
         return p;
     }
 
-    void read_contact(const toml::table& root, Model& m) {
+    /// Without [contact]: smooth contact with the documented defaults as soon as two bodies can
+    /// meet (at least two bodies, at least one not fixed); none otherwise (issue #12 item 11: a
+    /// disk fell through a slab because contact was off unless written).
+    void read_contact(const toml::table& root, Scenario& sc) {
+        Model& m = sc.model;
         const toml::table* t = sub_table(src_, root, "contact");
         if (!t) {
-            m.contact.algorithm = ContactAlgorithm::None;
+            const bool movable =
+                std::any_of(m.bodies.begin(), m.bodies.end(), [](const Body& b) { return !b.fixed; });
+            const bool on = m.bodies.size() >= 2 && movable;
+            m.contact.algorithm = on ? ContactAlgorithm::Smooth : ContactAlgorithm::None;
+            sc.contact_default = true;
             return;
         }
         std::vector<std::string> keys = {"algorithm", "buffer", "two_way",
@@ -973,9 +1039,8 @@ private:
         if (pairs.empty()) {
             return;
         }
-        const size_t nm = m.materials.size();
-        c.pair_params.assign(nm * nm, c.params);
-        std::vector<int> set_by(nm * nm, 0);  // line of the pair entry that set each pair
+        // line of the pair entry that set each (ordered) pair; only the pairs that are set
+        std::map<std::pair<int, int>, int> set_by;
         std::vector<std::string> pair_keys = {"materials"};
         pair_keys.insert(pair_keys.end(), kContactLawKeys.begin(), kContactLawKeys.end());
         for (size_t i = 0; i < pairs.size(); ++i) {
@@ -1008,15 +1073,16 @@ private:
             }
             p.set_context(fmt::format("contact pair (\"{}\", \"{}\")", material_names_[idx[0]],
                                       material_names_[idx[1]]));
-            const size_t ab = static_cast<size_t>(idx[0]) * nm + static_cast<size_t>(idx[1]);
-            const size_t ba = static_cast<size_t>(idx[1]) * nm + static_cast<size_t>(idx[0]);
-            if (set_by[ab] != 0) {
+            if (const auto it = set_by.find({idx[0], idx[1]}); it != set_by.end()) {
                 p.fail(*mats, "materials",
-                       fmt::format("this material pair is already set on line {}", set_by[ab]));
+                       fmt::format("this material pair is already set on line {}", it->second));
             }
             const ContactParams law = read_law(p, c.params);
-            c.pair_params[ab] = c.pair_params[ba] = law;
-            set_by[ab] = set_by[ba] = p.location("materials").line;
+            c.pair_overrides.push_back({idx[0], idx[1], law});
+            if (idx[1] != idx[0]) {
+                c.pair_overrides.push_back({idx[1], idx[0], law});
+            }
+            set_by[{idx[0], idx[1]}] = set_by[{idx[1], idx[0]}] = p.location("materials").line;
         }
     }
 
@@ -1029,6 +1095,30 @@ private:
         run.stable_dt = stable;
         run.limiting_tri = tri;
         const std::string line = src_.line(dt_loc_.line);
+        std::string limit;  // what sets the stable limit, for messages
+        if (tri != kNone) {
+            const size_t t = static_cast<size_t>(tri);
+            const Material& mat = m.materials[static_cast<size_t>(m.tri_material[t])];
+            const auto& n = m.tri_nodes[t];
+            const Vec2 c = (m.node_x0[n[0]] + m.node_x0[n[1]] + m.node_x0[n[2]]) / 3.0;
+            limit = fmt::format(
+                "triangle {} at ({:.4g}, {:.4g}) of body \"{}\", material \"{}\" (youngs_modulus "
+                "= {:g} Pa, density = {:g} kg/m^3)",
+                tri, c.x, c.y, m.bodies[static_cast<size_t>(m.tri_body[t])].name, mat.name,
+                mat.youngs_modulus, mat.density);
+        } else {
+            Real kn = m.contact.params.penalty;
+            for (const ContactParams& p : m.contact.resolved) {
+                kn = std::max(kn, p.penalty);
+            }
+            limit = fmt::format("the contact penalty (largest k_n = {:g} Pa)", kn);
+        }
+        if (run.dt_auto) {
+            run.dt_cause = fmt::format("dt = \"auto\" = {:g} x the stable limit {:.4g} s set by {}",
+                                       run.dt_fraction, stable, limit);
+        } else {
+            run.dt_cause = fmt::format("dt = {:g} s is given in [simulation]", run.dt);
+        }
         if (run.dt_auto) {
             if (!std::isfinite(stable)) {
                 throw InputError(dt_loc_, "simulation.dt",
@@ -1063,15 +1153,107 @@ private:
         }
     }
 
+    // ---- times of kicks and supports against end_time, output interval against dt ----------
+    void check_times(Scenario& sc) {
+        const RunSettings& run = sc.run;
+        for (const KickEntry& k : kick_entries_) {
+            if (k.time >= run.end_time) {
+                throw InputError(k.loc, k.key,
+                                 fmt::format("{}: time = {:g} s is not before end_time = {:g} s: "
+                                             "the kick would never act; expected a time < "
+                                             "end_time (or a longer end_time)",
+                                             k.context, k.time, run.end_time),
+                                 src_.line(k.loc.line));
+            }
+        }
+        // a support faster than the P-wave speed of its material: the elements next to it
+        // invert within a few steps whatever dt (theory eq. 5.3: the boundary moves more than
+        // half an element per step at dt = 0.5 h / c_p); without this the run fails blaming dt
+        for (const BoundarySpeed& b : boundary_speeds_) {
+            const BodyEntry* entry = nullptr;
+            for (const BodyEntry& e : bodies_) {
+                if (e.table == b.body) entry = &e;
+            }
+            const Material& mat = sc.model.materials[static_cast<size_t>(
+                sc.model.bodies[static_cast<size_t>(sc.model.node_body[first_node(*entry)])]
+                    .material)];
+            const Real cp = std::sqrt((mat.lambda + 2.0 * mat.mu) / mat.density);
+            if (b.speed >= cp) {
+                throw InputError(
+                    b.loc, b.key,
+                    fmt::format("{}: the prescribed speed {:g} m/s is not below the P-wave speed "
+                                "c_p = {:.4g} m/s of material \"{}\": the elements next to the "
+                                "boundary invert within a few steps whatever dt; expected a speed "
+                                "< c_p (quasi-static loading: < 0.01 c_p); check the units",
+                                b.context, b.speed, cp, mat.name),
+                    src_.line(b.loc.line));
+            }
+        }
+        if (run.output.interval > 0 && run.output.interval < run.dt) {
+            sc.warnings.push_back(fmt::format(
+                "{}:{}:{}: warning: [output]: interval = {:g} s is shorter than the time step dt "
+                "= {:.4g} s: a frame is written after every step ({:.0f} frames); use interval "
+                ">= dt, or omit it for 100 frames",
+                src_.name, interval_loc_.line, interval_loc_.column, run.output.interval, run.dt,
+                planned_steps(run)));
+        }
+    }
+
+    struct BoundarySpeed {
+        SourceLocation loc;
+        std::string key;
+        std::string context;
+        Real speed = 0;
+        const toml::table* body = nullptr;
+    };
+
+    struct KickEntry {
+        SourceLocation loc;
+        std::string key;
+        std::string context;
+        Real time = 0;
+    };
+
     const SourceText& src_;
     std::string base_dir_;
     SourceLocation dt_loc_;
+    SourceLocation end_time_loc_;
+    SourceLocation interval_loc_;
+    std::vector<KickEntry> kick_entries_;
+    std::vector<BoundarySpeed> boundary_speeds_;
     std::vector<std::string> material_names_;
     std::vector<BodyEntry> bodies_;
     std::vector<LoadedMesh> meshes_;
 };
 
 }  // namespace
+
+Real planned_steps(const RunSettings& run) {
+    return std::ceil(run.end_time / run.dt - 1e-9);
+}
+
+void check_step_count(const RunSettings& run, const SourceLocation& where, const std::string& key,
+                      const std::string& source_line) {
+    const Real steps = planned_steps(run);
+    if (!(run.end_time >= run.dt)) {
+        throw InputError(where, key,
+                         fmt::format("end_time = {:g} s is shorter than one time step ({}): the "
+                                     "run would take {:g} step(s); expected end_time >= dt = {:.4g} "
+                                     "s; check the units of end_time, youngs_modulus and density",
+                                     run.end_time, run.dt_cause, steps > 0 ? steps : 0.0, run.dt),
+                         source_line);
+    }
+    if (!(steps <= run.max_steps)) {
+        throw InputError(
+            where, key,
+            fmt::format("end_time = {:g} s needs {:.3g} steps of dt = {:.4g} s, more than "
+                        "[simulation] max_steps = {:g}; {}; check the units of end_time, dt, "
+                        "youngs_modulus, density and the contact penalty, or raise max_steps if "
+                        "this run is intended",
+                        run.end_time, steps, run.dt, run.max_steps, run.dt_cause),
+            source_line);
+    }
+}
 
 Scenario load_scenario_from_string(const std::string& text, const std::string& name,
                                    const std::string& base_dir) {
@@ -1090,6 +1272,13 @@ Scenario load_scenario_from_string(const std::string& text, const std::string& n
 }
 
 Scenario load_scenario(const std::string& path) {
+    std::error_code dir_ec;
+    if (fs::is_directory(path, dir_ec)) {
+        throw InputError({path, 0, 0}, "",
+                         fmt::format("cannot read scenario file '{}': it is a directory; expected "
+                                     "a TOML scenario file (e.g. {})",
+                                     path, (fs::path(path) / "scenario.toml").lexically_normal().string()));
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         std::error_code ec;

@@ -371,6 +371,17 @@ void write_vtu(const std::string& path, const Model& m, const State& s,
     h += "    <FieldData>\n";
     for (const Array& a : field)
         h += place(a, "      ");
+    // body names indexed by body id (the `body` point and cell arrays), inline: VTK writes a
+    // String array as the byte values of the names, each followed by 0 (vtkXMLWriter, ASCII)
+    h += fmt::format("      <Array type=\"String\" Name=\"body_name\" NumberOfTuples=\"{}\" "
+                     "format=\"ascii\">\n       ",
+                     m.bodies.size());
+    for (const Body& b : m.bodies) {
+        for (const char c : b.name)
+            h += fmt::format(" {}", static_cast<unsigned>(static_cast<unsigned char>(c)));
+        h += " 0";
+    }
+    h += "\n      </Array>\n";
     h += "    </FieldData>\n";
     h += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", nn, nt);
     h += "      <PointData Vectors=\"velocity\">\n";

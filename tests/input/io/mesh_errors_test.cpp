@@ -82,8 +82,12 @@ $Nodes
 xx
 )");
     // Gmsh says "Could not read nodes" without a line: we point at the $Nodes header (line 4)
-    EXPECT_THAT(mesh_error(path), StartsWith(path + ":4: error: cannot read mesh file '" + path +
-                                             "': Could not read nodes"));
+    // and say that the file ends there (issue #12 item 10)
+    EXPECT_THAT(mesh_error(path),
+                StartsWith(path + ":4: error: cannot read mesh file '" + path +
+                           "': the file ends inside section $Nodes (no $EndNodes follows): it is "
+                           "truncated or incomplete"));
+    EXPECT_THAT(mesh_error(path), HasSubstr("(Gmsh: Could not read nodes)"));
     EXPECT_THAT(mesh_error(path), HasSubstr(" 4 | $Nodes"));
 }
 

@@ -359,12 +359,18 @@ TEST(ContactParameters, PairParametersAndValidation) {
     const int32_t soft = b.add_material(1e8, 1000);
     b.add_body(make_rectangle_mesh(0, 0, 1, 1, 2, 2));
     b.add_body(make_rectangle_mesh(2, 0, 1, 1, 2, 2), false, {}, soft);
-    b.m.contact.pair_params.assign(4, ContactParams{});
-    b.m.contact.pair_params[1].friction = 0.3;  // contactor material 0, target material 1
+    ContactParams law;
+    law.friction = 0.3;
+    b.m.contact.pair_overrides.push_back({0, 1, law});  // contactor material 0, target material 1
     const Model& m = b.finalize();
     EXPECT_DOUBLE_EQ(pair_parameters(m.contact, 0, 1).friction, 0.3);
     EXPECT_DOUBLE_EQ(pair_parameters(m.contact, 0, 1).penalty, 5e8);  // 5 x the smaller E
-    EXPECT_DOUBLE_EQ(pair_parameters(m.contact, 0, 0).penalty, 5e9);
+    // a pair without an override takes the [contact] law: k_n = 5 x the smallest E of the model
+    // (docs/scenario.md); before the sparse table (#12 item 10) every pair of a model with any
+    // override took 5 x the smaller E of its own two materials (5e9 here), against the docs
+    EXPECT_DOUBLE_EQ(pair_parameters(m.contact, 0, 0).penalty, 5e8);
+    EXPECT_DOUBLE_EQ(pair_parameters(m.contact, 0, 0).friction, 0.0);
+    EXPECT_DOUBLE_EQ(pair_parameters(m.contact, 1, 0).friction, 0.0);  // only the pair set
 
     testing::ModelBuilder bad;
     bad.add_body(make_rectangle_mesh(0, 0, 1, 1, 2, 2));

@@ -189,11 +189,11 @@ TEST(LoadScenario, GoodScenarioBuildsTheModel) {
     EXPECT_EQ(m.contact.algorithm, ContactAlgorithm::Smooth);
     EXPECT_EQ(m.contact.params.penalty, 5e9);
     EXPECT_EQ(m.contact.params.friction, 0.3);
-    ASSERT_EQ(m.contact.pair_params.size(), 4u);
-    EXPECT_EQ(m.contact.pair_params[0 * 2 + 0].friction, 0.3);  // steel-steel: default
-    EXPECT_EQ(m.contact.pair_params[0 * 2 + 1].friction, 0.8);  // symmetric override
-    EXPECT_EQ(m.contact.pair_params[1 * 2 + 0].friction, 0.8);
-    EXPECT_EQ(m.contact.pair_params[1 * 2 + 0].penalty, 5e9);  // inherited
+    ASSERT_EQ(m.contact.pair_overrides.size(), 2u);  // only the pair set, in both orders
+    EXPECT_EQ(pair_parameters(m.contact, 0, 0).friction, 0.3);  // steel-steel: default
+    EXPECT_EQ(pair_parameters(m.contact, 0, 1).friction, 0.8);  // symmetric override
+    EXPECT_EQ(pair_parameters(m.contact, 1, 0).friction, 0.8);
+    EXPECT_EQ(pair_parameters(m.contact, 1, 0).penalty, 5e9);  // inherited
 
     // dt = "auto": dt_fraction times the model's stable limit, and that limit is below the
     // plane-stress wave transit time over the shortest edge of the moving block (a CST cannot
