@@ -251,7 +251,7 @@ TEST(ScenarioErrors, UnknownPhysicalGroupListsAvailable) {
 TEST(ScenarioErrors, BodyGroupMustBeASurface) {
     const std::string w =
         what_of(edit("material = \"steel\"\n", "material = \"steel\"\ngroup = \"bottom\"\n"));
-    EXPECT_THAT(w, StartsWith("bad.toml:16:9: error: body \"block\": mesh "));
+    EXPECT_THAT(w, StartsWith("bad.toml:16:9: error: body \"block\": \"bottom\" is a curve "));
     EXPECT_THAT(w, HasSubstr("\"bottom\" is a curve physical group of mesh"));
     EXPECT_THAT(w, HasSubstr("expected a surface group (Physical Surface)"));
 }
