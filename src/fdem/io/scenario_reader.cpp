@@ -99,6 +99,7 @@ struct BodyEntry {
     std::string name;
     const toml::table* table = nullptr;
     int mesh = 0;                  ///< index into the mesh cache
+    bool fixed = false;            ///< fixed = true
     std::vector<NodeId> node_map;  ///< mesh node -> model node (kNone if not in this body)
 };
 
@@ -384,12 +385,17 @@ private:
             opt.material = material_index(f, "material");
             opt.velocity = f.vec2("velocity", Vec2{0, 0}, "m/s");
             opt.fixed = f.boolean("fixed", false);
-            if (opt.fixed && f.has("velocity")) {
-                f.fail(*f.node("velocity"), "velocity",
-                       "velocity contradicts fixed = true (a fixed body keeps every node at its "
-                       "initial position); remove velocity, or fixed and prescribe the motion "
-                       "with a [[boundary]] velocity");
+            // (angular_velocity and velocity_gradient: read_velocity_field)
+            for (const char* k : {"velocity"}) {
+                if (opt.fixed && f.has(k)) {
+                    f.fail(*f.node(k), k,
+                           fmt::format("{} contradicts fixed = true (a fixed body keeps every "
+                                       "node at its initial position); remove {}, or fixed and "
+                                       "prescribe the motion with a [[boundary]] velocity",
+                                       k, k));
+                }
             }
+            entry.fixed = opt.fixed;
             read_velocity_field(f, opt);
             // element formulation (docs/scenario.md): omitted = from the mesh (6-node triangles
             // -> composite, 3-node -> cst); "composite" meshes a .geo at order 2
@@ -934,6 +940,12 @@ private:
                      fmt::format("kick[{}]", i), {"body", "time", "velocity", "components"});
             VelocityKick k;
             k.group = body_index(f, "body");
+            if (bodies_[static_cast<size_t>(k.group)].fixed) {
+                f.fail(*f.node("body"), "body",
+                       fmt::format("body \"{}\" is fixed (fixed = true): a kick would not move "
+                                   "it; expected a body that is not fixed",
+                                   bodies_[static_cast<size_t>(k.group)].name));
+            }
             f.set_context(
                 fmt::format("kick of body \"{}\"", bodies_[static_cast<size_t>(k.group)].name));
             k.time = f.real("time", std::nullopt, "s", Bounds::non_negative());

@@ -231,6 +231,16 @@ TEST(UnintendedInputs, FixedBodyWithVelocityIsAContradiction) {
                              "= true"));
 }
 
+TEST(UnintendedInputs, KickOfAFixedBodyIsAContradiction) {
+    // before: the kick was skipped silently (apply_kicks ignores fixed bodies)
+    const std::string fixed = edit("material = \"rock\"\n", "material = \"rock\"\nfixed = true\n",
+                                   edit("dt = \"auto\"", "dt = 1e-6"));
+    EXPECT_THAT(scenario_error(fixed + "\n[[kick]]\nbody = \"block\"\ntime = 0.0\nvelocity = "
+                                       "[1.0, 0.0]\n"),
+                HasSubstr("bad.toml:24:8: error: [[kick]] #1: body \"block\" is fixed (fixed = "
+                          "true): a kick would not move it"));
+}
+
 TEST(UnintendedInputs, KickAfterEndTimeIsRefused) {
     const std::string e =
         scenario_error(kBase + "\n[[kick]]\nbody = \"block\"\ntime = 5.0\nvelocity = [1.0, 0.0]\n");
