@@ -9,6 +9,7 @@
 
 #include "bench_common.hpp"
 #include "bench_phases.hpp"
+#include "fdem/measure.hpp"
 #include "fdem/simulate.hpp"
 #include "support/hash.hpp"
 
@@ -116,20 +117,49 @@ BENCHMARK(BM_StepViscous)
     ->ArgsProduct({{1 << 14, 1 << 20}, {1}, {0, 1}})
     ->Unit(benchmark::kMicrosecond);
 
+// BM_StepNoEnergy plus Resultants::accumulate after every step, as the CLI runs it when it writes
+// bodies.csv: the cost of the measurement when asked for (the clamped base is a boundary group).
+// The hash must equal BM_StepNoEnergy's for the same number of steps (it only reads the state).
+void BM_StepNoEnergyResultants(benchmark::State& st) {
+    omp_set_num_threads(static_cast<int>(st.range(1)));
+    const Model& m = bench::cached_block(st.range(0), true, false);
+    State s = make_state(m, 0.9 * stable_time_step(m));
+    const Resultants r(m);
+    IntervalImpulses acc = r.make_impulses();
+    step(m, s);
+    s.need_energy = false;
+    for (auto _ : st) {
+        step(m, s);
+        r.accumulate(m, s, acc);
+    }
+    st.SetItemsProcessed(st.iterations() * m.num_tris());
+    st.counters["omp_threads"] = static_cast<double>(st.range(1));
+    st.counters["dt"] = s.dt;
+    st.counters["steps"] = static_cast<double>(s.step);
+}
+
+BENCHMARK(BM_StepNoEnergyResultants)
+    ->ArgsProduct({{65536, 1048576}, {1}})
+    ->Unit(benchmark::kMicrosecond);
+
 // The whole step on a contact scene, dt = 0.5 x stable (contact bound included). Besides
 // items/s = triangle-steps/s, dt and drift as in BM_Step: the per-phase breakdown in CPU seconds
 // per call (bench_phases.hpp): t_element, t_broad (one detection; broad_per_step = detections
 // per step), t_narrow (contact without detection); the node update, clears and supports are the
 // step time minus these. Also the candidate pairs and the active contacts.
-void step_scene(benchmark::State& st, const Model& m, int warm_up) {
+// measure: also Resultants::accumulate after every step (bodies.csv, BM_StepPackResultants).
+void step_scene(benchmark::State& st, const Model& m, int warm_up, bool measure = false) {
     State s = make_state(m, 0.5 * stable_time_step(m));
     for (int k = 0; k < warm_up; ++k)  // past the first steps, until the scene is in contact
         step(m, s);
+    const Resultants r(m);
+    IntervalImpulses acc = r.make_impulses();
     const Real e0 = s.energy.total();
     const int64_t steps0 = s.step, rebuilds0 = s.contact.rebuilds;
     Real scale = 0, drift = 0;
     for (auto _ : st) {
         step(m, s);
+        if (measure) r.accumulate(m, s, acc);
         scale = std::max(scale, s.energy.kinetic + s.energy.strain + s.energy.contact);
         drift = std::max(drift, std::abs(s.energy.total() - e0));
     }
@@ -156,6 +186,15 @@ void BM_StepPack(benchmark::State& st) {
 }
 
 BENCHMARK(BM_StepPack)->ArgsProduct({{20000, 200000}, {1, 2}})->Unit(benchmark::kMicrosecond);
+
+// BM_StepPack plus Resultants::accumulate after every step (every node of a pack is a contact
+// node: the worst case of the measurement's per-step sums)
+void BM_StepPackResultants(benchmark::State& st) {
+    omp_set_num_threads(static_cast<int>(st.range(1)));
+    step_scene(st, bench::cached_pack(st.range(0), false), 100, true);
+}
+
+BENCHMARK(BM_StepPackResultants)->ArgsProduct({{20000}, {1}})->Unit(benchmark::kMicrosecond);
 
 // Args: {particles per side, threads}; ~6.5 triangles per particle plus the walls
 void BM_StepParticles(benchmark::State& st) {

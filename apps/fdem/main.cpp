@@ -266,6 +266,21 @@ int run(const RunOptions& opt) {
         opt.restart.empty()
             ? std::make_unique<fdem::HistoryWriter>((out / "history.csv").string())
             : std::make_unique<fdem::HistoryWriter>((out / "history.csv").string(), s.step);
+    // bodies.csv: resultants, reactions and mean motion per body entry and boundary group
+    std::unique_ptr<fdem::Resultants> resultants;
+    std::unique_ptr<fdem::BodiesWriter> bodies;
+    if (sc.run.output.bodies) {
+        resultants = std::make_unique<fdem::Resultants>(m);
+        bodies = std::make_unique<fdem::BodiesWriter>((out / "bodies.csv").string(), *resultants,
+                                                      opt.restart.empty() ? -1 : s.step);
+        if (prog.impulses.contact.size() != static_cast<size_t>(resultants->num_sets())) {
+            prog.impulses = resultants->make_impulses();  // fresh, or the checkpoint had none
+        }
+        if (bodies->header_changed()) {
+            fmt::print(stderr, "note: {} had other columns; its earlier rows were dropped\n",
+                       (out / "bodies.csv").string());
+        }
+    }
     fdem::PvdSeries series((out / "series.pvd").string());
     for (const auto& [t, file] : prog.frames)
         series.add(t, file);
@@ -275,6 +290,10 @@ int run(const RunOptions& opt) {
     std::string last_frame;  // last output frame written by this process (a good state)
     auto write_output = [&]() {
         history->write(m, s);
+        if (bodies) {
+            bodies->write(m, s, prog.impulses);
+            prog.impulses.clear();
+        }
         if (sc.run.output.vtu) {
             const std::string name = fmt::format("frame_{:06d}.vtu", prog.frame);
             fdem::write_vtu((out / name).string(), m, s);
@@ -309,6 +328,7 @@ int run(const RunOptions& opt) {
                             t_next >= prog.next_output - 0.5 * s.dt ||
                             (opt.checkpoint_every > 0 && t_next >= next_checkpoint - 0.5 * s.dt);
             fdem::step(m, s);
+            if (resultants) resultants->accumulate(m, s, prog.impulses);
             const std::string warning = fdem::check_run(m, s, sc.run, prog.energy);
             if (!warning.empty() && !warned) {
                 fmt::print(stderr, "{}{} (further warnings suppressed)\n", tty ? "\n" : "",

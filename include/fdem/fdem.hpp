@@ -4,6 +4,7 @@
 #include "fdem/build.hpp"
 #include "fdem/error.hpp"
 #include "fdem/math.hpp"
+#include "fdem/measure.hpp"
 #include "fdem/mesh.hpp"
 #include "fdem/model.hpp"
 #include "fdem/output.hpp"

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "fdem/measure.hpp"
 #include "fdem/model.hpp"
 #include "fdem/state.hpp"
 
@@ -88,6 +89,61 @@ private:
     std::FILE* file_ = nullptr;
     bool has_reference_ = false;
     Real total0_ = 0;  ///< total energy of the first row [J/m]
+};
+
+/// A CSV time series (bodies.csv, probes.csv): one header line, then one row per call, each
+/// row starting with the step number and flushed at once, so a killed run keeps every complete
+/// row. Numbers are written by the callers with %.17g (bit-exact when read back).
+class CsvSeries {
+public:
+    /// Creates (truncates) path and writes header (one line, without the newline). Throws
+    /// SimulationError naming the file if it cannot.
+    CsvSeries(std::string path, const std::string& header);
+    /// Restart: keeps the rows of an existing file with step <= resume_step (later rows came
+    /// from the interrupted run and will be written again) and appends from there. A missing
+    /// file, or one whose header differs from header (other columns: the output settings
+    /// changed), is started afresh; header_changed() then says whether old rows were dropped.
+    CsvSeries(std::string path, const std::string& header, int64_t resume_step);
+    ~CsvSeries();
+    CsvSeries(const CsvSeries&) = delete;
+    CsvSeries& operator=(const CsvSeries&) = delete;
+
+    /// Append one line (without the newline) and flush. Throws SimulationError on failure.
+    void write_line(const std::string& line, int64_t step, Real time);
+    /// The restart found rows under another header and dropped them.
+    bool header_changed() const { return header_changed_; }
+    const std::string& path() const { return path_; }
+
+private:
+    void open_append(int64_t step);
+    std::string path_;
+    std::FILE* file_ = nullptr;
+    bool header_changed_ = false;
+};
+
+/// Quote a CSV field if it needs it (RFC 4180: a comma, quote, CR or LF inside, or leading or
+/// trailing blanks): "a,b" -> "\"a,b\"" with inner quotes doubled.
+std::string csv_field(const std::string& text);
+
+/// bodies.csv (docs/output.md): per row step, time, then for every set of Resultants (body
+/// entries, then boundary groups) 12 columns NAME.ux, NAME.uy, NAME.vx, NAME.vy,
+/// NAME.contact_x, NAME.contact_y, NAME.contact_avg_x, NAME.contact_avg_y, NAME.reaction_x,
+/// NAME.reaction_y, NAME.reaction_avg_x, NAME.reaction_avg_y (SetValues).
+class BodiesWriter {
+public:
+    /// Fresh file (resume_step < 0) or restart from resume_step (CsvSeries).
+    BodiesWriter(const std::string& path, const Resultants& r, int64_t resume_step = -1);
+    /// One row of the state after a step; acc: impulses since the last row (the caller resets
+    /// them afterwards). Throws SimulationError if the row cannot be written.
+    void write(const Model& m, const State& s, const IntervalImpulses& acc);
+    bool header_changed() const { return csv_.header_changed(); }
+
+private:
+    static std::string header(const Resultants& r);
+    const Resultants& r_;
+    CsvSeries csv_;
+    std::vector<SetValues> values_;
+    std::string line_;
 };
 
 }  // namespace fdem

@@ -13,6 +13,7 @@ namespace fdem {
 struct OutputSettings {
     Real interval = 0;        ///< simulated time between output frames [s]; 0 = 100 frames
     bool vtu = true;          ///< write VTU frames and a PVD series
+    bool bodies = true;       ///< write bodies.csv (resultants per body entry and boundary group)
     std::string dir = "out";  ///< output folder (relative to the working directory)
 };
 

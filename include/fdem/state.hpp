@@ -37,6 +37,11 @@ struct State {
     std::vector<Vec2> v;          ///< velocities v^{n-1/2} before a step, v^{n+1/2} after [m/s]
     std::vector<Vec2> f;          ///< total nodal force of the last step [N/m]
     std::vector<Vec2> f_contact;  ///< contact part of f [N/m]
+    /// Reaction of each supported node in the last step [N/m] (theory eq. 8.1): one entry per
+    /// (BoundaryCondition, node) in the order of Model::bcs and their nodes, the force the support
+    /// applied so that the prescribed components of v took their value; 0 for an inactive
+    /// support and for nodes of fixed bodies (their reaction: Resultants, measure.hpp)
+    std::vector<Vec2> bc_reaction;
 
     Energy energy;
     std::vector<Vec2> scratch_bc_v;  ///< v^{n-1/2}, then x^n, of supported nodes (step() scratch)

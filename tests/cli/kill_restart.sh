@@ -45,4 +45,5 @@ echo "restarted: $got"
 [ "$ref" = "$got" ] || { echo "FAIL: restarted run differs from the uninterrupted run"; exit 1; }
 cmp "$work/ref/history.csv" "$work/int/history.csv" || { echo "FAIL: history.csv differs"; exit 1; }
 cmp "$work/ref/series.pvd" "$work/int/series.pvd" || { echo "FAIL: series.pvd differs"; exit 1; }
+cmp "$work/ref/bodies.csv" "$work/int/bodies.csv" || { echo "FAIL: bodies.csv differs"; exit 1; }
 echo "OK: bitwise identical after SIG$sig and restart"

@@ -71,6 +71,7 @@ State make_state(const Model& m, Real dt) {
     for (const Load& ld : m.loads)
         n_load_slots += static_cast<size_t>(ld.num_slots());
     s.scratch_load.assign(n_load_slots, Vec2{});
+    s.bc_reaction.assign(n_bc, Vec2{});
     // partial sums: 4 per element chunk (element/cst.cpp), 3 per node block (below)
     const size_t n_blocks = (m.node_x0.size() + kNodeBlock - 1) / kNodeBlock;
     s.scratch_sums.assign(
@@ -272,7 +273,9 @@ void step(const Model& m, State& s) {
         for (const BoundaryCondition& bc : m.bcs) {
             const bool active = tm >= bc.start && tm < bc.end;
             for (NodeId i : bc.nodes) {
-                const Vec2 v_old = s.scratch_bc_v[k++];
+                const size_t slot = k++;
+                const Vec2 v_old = s.scratch_bc_v[slot];
+                s.bc_reaction[slot] = {};
                 if (!active || m.node_inv_mass[i] == 0) continue;
                 const Real mi = m.node_mass[i];
                 const Vec2 v_free = v[i];
@@ -282,6 +285,7 @@ void step(const Model& m, State& s) {
                 const Vec2 reaction = (mi / dt_v) * (v_new - v_free);
                 const Vec2 vn_free = first ? v_old : 0.5 * (v_old + v_free);
                 const Vec2 vn = first ? v_old : 0.5 * (v_old + v_new);
+                s.bc_reaction[slot] = reaction;  // theory eq. 8.1 (bodies.csv)
                 support_work += dot(reaction, vn) * dt_v;
                 kinetic2 += mi * (norm2(vn) - norm2(vn_free));
                 v[i] = v_new;

@@ -208,6 +208,9 @@ void put_progress(Sink& o, const RunProgress& p) {
         put(o, t);
         put(o, file);
     }
+    put(o, p.impulses.contact);
+    put(o, p.impulses.reaction);
+    put(o, p.impulses.time);
 }
 
 /// Bounds-checked reader over the file bytes; every failure is an InputError naming the file.
@@ -570,6 +573,18 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
         r.get(t);
         r.get(file);
     }
+    // bodies.csv impulses since its last row: one per measured set (Resultants), or none when
+    // the run wrote no bodies.csv
+    const uint64_t ni = r.count(2 * sizeof(Real));
+    progress.impulses.contact.resize(ni);
+    for (Vec2& q : progress.impulses.contact)
+        r.get(q);
+    const uint64_t nr = r.count(2 * sizeof(Real));
+    if (nr != ni) r.fail("bodies.csv impulses of different lengths (corrupt file)");
+    progress.impulses.reaction.resize(nr);
+    for (Vec2& q : progress.impulses.reaction)
+        r.get(q);
+    r.get(progress.impulses.time);
     if (r.remaining() != 0) r.fail("unexpected bytes after the payload");
 }
 

@@ -9,7 +9,8 @@
 //
 // What is saved: every State field that carries information from one step to the next: step,
 // time, dt, x, v, f, f_contact, energy, next_kick and the ContactState (candidates, pair history,
-// broad-phase skin, baseline A couples with their sliding history). scratch_bc_v, scratch_sums,
+// broad-phase skin, baseline A couples with their sliding history). scratch_bc_v, bc_reaction
+// (rewritten by every step before bodies.csv reads it), scratch_sums,
 // ContactState::pair_out and the baseline A grid/result scratch are rewritten before they are
 // read in every step and are not saved. tests/unit/io/checkpoint_test.cpp pins the struct
 // sizes, so a new field in State or ContactState fails a test until it is handled here.
@@ -20,15 +21,17 @@
 #include <utility>
 #include <vector>
 
+#include "fdem/measure.hpp"
 #include "fdem/model.hpp"
 #include "fdem/state.hpp"
 
 namespace fdem {
 
 /// Version of the checkpoint layout; bump it whenever the payload changes.
-constexpr uint32_t kCheckpointFormat = 4;  // 2: baseline A couples (ContactState::legacy)
+constexpr uint32_t kCheckpointFormat = 5;  // 2: baseline A couples (ContactState::legacy)
                                            // 3: Energy::work_external_pending
                                            // 4: PairHistory::f_damp
+                                           // 5: RunProgress::impulses (bodies.csv)
 
 /// Running energy-balance monitor (the [checks] energy test of the CLI), kept in checkpoints so
 /// a restarted run measures the drift from the same E_0.
@@ -48,6 +51,7 @@ struct RunProgress {
     Real next_output = 0;  ///< simulated time of the next output frame [s]
     EnergyMonitor energy;
     std::vector<std::pair<Real, std::string>> frames;  ///< (time, file) of the PVD series
+    IntervalImpulses impulses;  ///< bodies.csv: impulses since its last row (empty: no bodies.csv)
 };
 
 /// Hash of everything in the built Model that affects the physics (geometry, masses,

@@ -228,12 +228,13 @@ private:
         if (!t) {
             return;
         }
-        Fields f(src_, *t, "[output]", "output", {"interval", "dir", "vtu"});
+        Fields f(src_, *t, "[output]", "output", {"interval", "dir", "vtu", "bodies"});
         OutputSettings& o = sc.run.output;
         o.interval = f.real("interval", 0.0, "s", Bounds::positive());
         interval_loc_ = f.location("interval");
         o.dir = f.string("dir", std::string("out"));
         o.vtu = f.boolean("vtu", true);
+        o.bodies = f.boolean("bodies", true);
     }
 
     // ---- [checks] ---------------------------------------------------------------------------

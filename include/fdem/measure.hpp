@@ -1,0 +1,89 @@
+// What a run measures besides energies: force resultants, support reactions and mean motion of
+// every [[body]] entry and every boundary group (bodies.csv), docs/output.md and theory §8.
+// Computed by the library from State after each step; the CSV writers are in output.hpp.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fdem/model.hpp"
+#include "fdem/state.hpp"
+
+namespace fdem {
+
+/// Impulses since the last bodies.csv row, one entry per measured set (Resultants): the
+/// interval averages are impulse / time (theory eq. 8.4). Kept in checkpoints so a restarted run
+/// writes the same averages.
+struct IntervalImpulses {
+    std::vector<Vec2> contact;   ///< sum over steps of dt_v x contact resultant [N s/m]
+    std::vector<Vec2> reaction;  ///< sum over steps of dt_v x support reaction [N s/m]
+    Real time = 0;               ///< sum of dt_v over those steps [s]
+    /// Zero every impulse (after a row); no allocation.
+    void clear() {
+        for (Vec2& q : contact)
+            q = {};
+        for (Vec2& q : reaction)
+            q = {};
+        time = 0;
+    }
+};
+
+/// One row of one measured set (bodies.csv, docs/output.md). Forces per unit thickness.
+struct SetValues {
+    Vec2 u;             ///< mass-weighted mean displacement x - X at t^{n+1} [m]
+    Vec2 v;             ///< mass-weighted mean velocity v^{n+1/2} [m/s]
+    Vec2 contact;       ///< resultant contact force of the last step (at x^n) [N/m]
+    Vec2 contact_avg;   ///< contact impulse since the last row / its time [N/m]
+    Vec2 reaction;      ///< support reaction of the last step [N/m] (theory eqs. 8.1-8.2)
+    Vec2 reaction_avg;  ///< reaction impulse since the last row / its time [N/m]
+};
+
+/// The measured sets of a model and how to sum them. Sets [0, num_entries()) are the scenario's
+/// [[body]] entries (Model::group_names: every body an entry produced, e.g. all pieces of
+/// pieces = "separate"); the others are the boundary groups, one per distinct
+/// BoundaryCondition::name ("body/group"), in order of first appearance, holding the union of
+/// the nodes of the supports of that name.
+///
+/// Every sum runs in a fixed order (set, then node id or support slot), so the numbers are the
+/// same for any thread count. The constructor allocates; accumulate() and evaluate() do not.
+class Resultants {
+public:
+    explicit Resultants(const Model& m);
+
+    int32_t num_sets() const { return static_cast<int32_t>(sets_.size()); }
+    int32_t num_entries() const { return num_entries_; }
+    /// [[body]] entry name, or "body/group" of a boundary group
+    const std::string& name(int32_t set) const { return sets_[static_cast<size_t>(set)].name; }
+
+    /// Zeroed impulses of the right size.
+    IntervalImpulses make_impulses() const;
+
+    /// After every step: add the step's contact resultant and reaction of every set, times the
+    /// step's velocity increment time dt_v (dt/2 on the first step, theory eq. 5.1), to acc.
+    void accumulate(const Model& m, const State& s, IntervalImpulses& acc) const;
+
+    /// Values of every set for the state after a step (out: num_sets() entries); the averages
+    /// are acc / acc.time (the last instant values where acc.time is 0).
+    void evaluate(const Model& m, const State& s, const IntervalImpulses& acc,
+                  SetValues* out) const;
+
+    /// Contact resultant and reaction of one set for the last step [N/m].
+    void forces(const Model& m, const State& s, int32_t set, Vec2& contact, Vec2& reaction) const;
+
+private:
+    struct Set {
+        std::string name;
+        std::vector<NodeId> nodes;          ///< group: its nodes; entry: empty (bodies below)
+        std::vector<BodyId> bodies;         ///< entry: its bodies, ascending
+        std::vector<NodeId> force_nodes;    ///< nodes that can carry a contact force, ascending
+        std::vector<int32_t> slots;         ///< its indices into State::bc_reaction, ascending
+        std::vector<BodyId> fixed_bodies;   ///< entry: its fixed bodies (reaction eq. 8.2)
+        std::vector<NodeId> fixed_nodes;    ///< nodes of those bodies a contact or load can act on
+        Real fixed_mass = 0;                ///< mass of those fixed bodies [kg/m]
+    };
+    std::vector<Set> sets_;
+    int32_t num_entries_ = 0;
+};
+
+}  // namespace fdem
