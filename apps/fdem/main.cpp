@@ -1,6 +1,7 @@
 // fdem command-line program: run or check a scenario.
 //   fdem run SCENARIO [--out DIR] [--end-time T] [--threads N] [--quiet]
 //                     [--checkpoint-every T] [--restart FILE] [--print-hash]
+//                     [--progress-every S]
 //   fdem check SCENARIO
 // Exit codes: 0 success, 1 simulation failure, 2 usage or input error (including a checkpoint
 // that does not belong to the scenario), 130 / 143 stopped by SIGINT / SIGTERM after writing a
@@ -10,6 +11,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 
@@ -61,6 +63,7 @@ struct RunOptions {
     double checkpoint_every = 0;  ///< simulated seconds between checkpoints; 0 = none
     std::string restart;          ///< checkpoint to continue from
     bool print_hash = false;
+    double progress_every = 30;  ///< wall seconds between progress lines when stderr is no tty
 };
 
 // Rough resident size of the model and state [bytes], for `fdem check`.
@@ -204,6 +207,8 @@ int run(const RunOptions& opt) {
     if (opt.threads > 0) omp_set_num_threads(opt.threads);
     const fdem::Model& m = sc.model;
     const bool tty = isatty(STDERR_FILENO) && !opt.quiet;
+    // batch runs (stderr to a file or pipe): a full progress line every progress_every seconds
+    const bool batch = !isatty(STDERR_FILENO) && !opt.quiet && opt.progress_every > 0;
     if (!opt.quiet) print_summary(sc);
     print_warnings(sc);
 
@@ -360,6 +365,20 @@ int run(const RunOptions& opt) {
                            opt.scenario, out.string(), checkpoint_path);
                 return 128 + sig;
             }
+            if (batch) {
+                const auto now = clock::now();
+                if (std::chrono::duration<double>(now - last_progress).count() >=
+                    opt.progress_every) {
+                    last_progress = now;
+                    const double wall = std::chrono::duration<double>(now - t0).count();
+                    const double sps = static_cast<double>(s.step - start_step) / wall;
+                    fmt::print(stderr,
+                               "progress   step {} / {}  t = {:.6g} s  {:.3g} steps/s  ETA {:.0f} "
+                               "s\n",
+                               s.step, total_steps, s.time, sps,
+                               static_cast<double>(total_steps - s.step) / sps);
+                }
+            }
             if (tty) {
                 const auto now = clock::now();
                 if (now - last_progress > std::chrono::milliseconds(500)) {
@@ -413,6 +432,9 @@ int run(const RunOptions& opt) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // line-buffered stdout: a batch log (stdout to a file) shows each line when it is printed,
+    // not at exit
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);
     CLI::App app{"fdem: 2-D combined finite-discrete element simulator with smooth contact"};
     app.set_version_flag("--version", std::string("fdem ") + FDEM_VERSION);
     app.require_subcommand(1);
@@ -440,6 +462,20 @@ int main(int argc, char** argv) {
                         "continue from a checkpoint written for the same scenario");
     run_cmd->add_flag("--print-hash", ro.print_hash,
                       "with --quiet: print only 'hash <hex>' of the final x, v and energies");
+    run_cmd
+        ->add_option("--progress-every", ro.progress_every,
+                     "when stderr is not a terminal: a progress line every S wall-clock seconds "
+                     "(default 30; 0 = none)")
+        ->check(
+            [](const std::string& v) -> std::string {
+                char* end = nullptr;
+                const double d = std::strtod(v.c_str(), &end);
+                if (end == v.c_str() || *end != '\0' || !std::isfinite(d) || d < 0) {
+                    return fmt::format("--progress-every: expected seconds >= 0, got '{}'", v);
+                }
+                return "";
+            },
+            "SECONDS");
 
     std::string check_path;
     auto* check_cmd = app.add_subcommand("check", "validate a scenario and print a model summary");

@@ -79,3 +79,10 @@ add_test(NAME cli.check_lists_loads
          COMMAND fdem_cli check ${PROJECT_SOURCE_DIR}/examples/06_pressurised_ring/scenario.toml)
 set_tests_properties(cli.check_lists_loads PROPERTIES LABELS input
   PASS_REGULAR_EXPRESSION "load       ring/outer: pressure 1e\\+07 Pa on 64 edge\\(s\\), 6.28[0-9] m, ramp over 0.005 s")
+
+# ---- batch output: progress lines when stderr is no terminal, line-buffered stdout, bodies.csv
+add_test(NAME cli.batch_progress_and_bodies_csv
+         COMMAND ${cli_dir}/progress.sh $<TARGET_FILE:fdem_cli> ${cli_dir}/restart.toml
+                 ${cli_out}/progress ${PROJECT_SOURCE_DIR}/docs/output.md)
+set_tests_properties(cli.batch_progress_and_bodies_csv PROPERTIES LABELS input
+                     PASS_REGULAR_EXPRESSION "OK: batch progress")
