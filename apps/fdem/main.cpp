@@ -162,6 +162,17 @@ void print_summary(const fdem::Scenario& sc) {
                    "VTU frame)\n",
                    m.bodies.size() - kMaxRows, kMaxRows, m.bodies.size() - 1);
     }
+    for (const fdem::ProbeSpec& p : sc.run.output.probes) {
+        if (p.kind == fdem::ProbeSpec::Kind::Node) {
+            const fdem::Vec2 x = m.node_x0[p.nodes[0]];
+            fmt::print("probe      \"{}\": node {} at ({:.6g}, {:.6g}) m, {:.3g} m from the given "
+                       "position, stress of triangle {}\n",
+                       p.name, p.nodes[0], x.x, x.y, fdem::norm(x - p.position), p.tris[0]);
+        } else {
+            fmt::print("probe      \"{}\": mean over {} nodes and {} triangles\n", p.name,
+                       p.nodes.size(), p.tris.size());
+        }
+    }
 }
 
 void print_warnings(const fdem::Scenario& sc) {
@@ -286,6 +297,17 @@ int run(const RunOptions& opt) {
                        (out / "bodies.csv").string());
         }
     }
+    // probes.csv: the [[probe]] entries
+    std::unique_ptr<fdem::ProbesWriter> probes;
+    if (!sc.run.output.probes.empty()) {
+        probes = std::make_unique<fdem::ProbesWriter>((out / "probes.csv").string(),
+                                                      sc.run.output.probes,
+                                                      opt.restart.empty() ? -1 : s.step);
+        if (probes->header_changed()) {
+            fmt::print(stderr, "note: {} had other columns; its earlier rows were dropped\n",
+                       (out / "probes.csv").string());
+        }
+    }
     fdem::PvdSeries series((out / "series.pvd").string());
     for (const auto& [t, file] : prog.frames)
         series.add(t, file);
@@ -299,6 +321,7 @@ int run(const RunOptions& opt) {
             bodies->write(m, s, prog.impulses);
             prog.impulses.clear();
         }
+        if (probes) probes->write(m, s);
         if (sc.run.output.vtu) {
             const std::string name = fmt::format("frame_{:06d}.vtu", prog.frame);
             fdem::write_vtu((out / name).string(), m, s);

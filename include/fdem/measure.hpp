@@ -86,4 +86,38 @@ private:
     int32_t num_entries_ = 0;
 };
 
+/// A [[probe]] resolved at load (docs/scenario.md): what probes.csv follows. Node and triangle
+/// ids are fixed for the run (the probe moves with the material).
+struct ProbeSpec {
+    enum class Kind {
+        Node,   ///< position = [x, y]: the nearest node, the stress of the triangle holding it
+        Group,  ///< body + group: mean over the nodes of a physical group
+        Body,   ///< body alone: mean over every node and triangle of the entry
+    };
+    std::string name;
+    Kind kind = Kind::Node;
+    Vec2 position;              ///< Node: the given reference position [m]
+    std::vector<NodeId> nodes;  ///< the node (Node) or the nodes (Group, Body), ascending
+    std::vector<TriId> tris;    ///< the triangle(s) whose stress is reported, ascending
+};
+
+/// What a probe reports for a state (probes.csv).
+struct ProbeValues {
+    Vec2 x;       ///< position x^{n+1} of the node; mass-weighted mean for a group or body [m]
+    Vec2 v;       ///< velocity v^{n+1/2}, likewise [m/s]
+    Mat2 stress;  ///< Cauchy stress of the triangle; current-area-weighted mean over several [Pa]
+};
+
+/// The node nearest to p (reference configuration) among the bodies of [[body]] entry `entry`
+/// (every body when entry < 0; the lowest id on a tie), and the triangle of that node's body
+/// that contains p, or else the one of the node's triangles whose centroid is nearest to p.
+void locate_probe(const Model& m, Vec2 p, int32_t entry, NodeId& node, TriId& tri);
+
+/// The triangles a group probe averages over: those with all three nodes in `nodes` (a surface
+/// group), or, when there are none (a point or curve group), those with at least one.
+std::vector<TriId> probe_triangles(const Model& m, const std::vector<NodeId>& nodes);
+
+/// Values of one probe for the state after a step (theory eq. 8.6). No allocation.
+ProbeValues evaluate_probe(const Model& m, const State& s, const ProbeSpec& p);
+
 }  // namespace fdem

@@ -146,4 +146,23 @@ private:
     std::string line_;
 };
 
+/// probes.csv (docs/output.md): per row step, time, then for every probe 7 columns NAME.x,
+/// NAME.y, NAME.vx, NAME.vy, NAME.sxx, NAME.syy, NAME.sxy (ProbeValues).
+class ProbesWriter {
+public:
+    /// Fresh file (resume_step < 0) or restart from resume_step (CsvSeries). probes must outlive
+    /// the writer.
+    ProbesWriter(const std::string& path, const std::vector<ProbeSpec>& probes,
+                 int64_t resume_step = -1);
+    /// One row of the state after a step. Throws SimulationError if it cannot be written.
+    void write(const Model& m, const State& s);
+    bool header_changed() const { return csv_.header_changed(); }
+
+private:
+    static std::string header(const std::vector<ProbeSpec>& probes);
+    const std::vector<ProbeSpec>& probes_;
+    CsvSeries csv_;
+    std::string line_;
+};
+
 }  // namespace fdem

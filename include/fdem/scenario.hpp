@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "fdem/error.hpp"
+#include "fdem/measure.hpp"
 #include "fdem/model.hpp"
 
 namespace fdem {
@@ -14,6 +15,7 @@ struct OutputSettings {
     Real interval = 0;        ///< simulated time between output frames [s]; 0 = 100 frames
     bool vtu = true;          ///< write VTU frames and a PVD series
     bool bodies = true;       ///< write bodies.csv (resultants per body entry and boundary group)
+    std::vector<ProbeSpec> probes;  ///< [[probe]] entries, resolved (probes.csv when not empty)
     std::string dir = "out";  ///< output folder (relative to the working directory)
 };
 

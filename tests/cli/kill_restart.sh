@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Interrupt a run with a signal mid-way, restart it from its last checkpoint and require the
-# final state, the CSV history and the PVD series to be identical to an uninterrupted run.
+# final state, the CSV files (history, bodies, probes) and the PVD series to be identical to an uninterrupted run.
 #   kill_restart.sh FDEM SCENARIO WORKDIR KILL|TERM|INT
 # KILL: SIGKILL, the last periodic checkpoint is used (the run has no chance to react).
 # TERM/INT: the run finishes its step, writes a checkpoint and exits with 143/130.
@@ -46,4 +46,5 @@ echo "restarted: $got"
 cmp "$work/ref/history.csv" "$work/int/history.csv" || { echo "FAIL: history.csv differs"; exit 1; }
 cmp "$work/ref/series.pvd" "$work/int/series.pvd" || { echo "FAIL: series.pvd differs"; exit 1; }
 cmp "$work/ref/bodies.csv" "$work/int/bodies.csv" || { echo "FAIL: bodies.csv differs"; exit 1; }
+cmp "$work/ref/probes.csv" "$work/int/probes.csv" || { echo "FAIL: probes.csv differs"; exit 1; }
 echo "OK: bitwise identical after SIG$sig and restart"

@@ -4,8 +4,8 @@
 #  1. a progress line every --progress-every seconds of wall time, format pinned;
 #  2. stdout is line-buffered: a run killed with SIGKILL has its summary in the log already;
 #  3. --quiet prints no progress line;
-#  4. bodies.csv opens as CSV (Python's csv module), every row has the header's length, and
-#     every column kind is documented in docs/output.md.
+#  4. bodies.csv and probes.csv open as CSV (Python's csv module), every row has the header's
+#     length, and every column kind is documented in docs/output.md.
 #   progress.sh FDEM SCENARIO WORKDIR DOCS_OUTPUT_MD
 set -euo pipefail
 fdem="$1" scenario="$2" work="$3" docs="$4"
@@ -55,5 +55,15 @@ for kind in sorted({h.rsplit(".", 1)[1] for h in head[2:]}):
     assert "`SET." + kind + "`" in docs, "column " + kind + " not in docs/output.md"
 print("bodies.csv: %d rows x %d columns, sets %s" %
       (len(rows) - 1, len(head), sorted({h.rsplit(".", 1)[0] for h in head[2:]})))
+probes = list(csv.reader(open(sys.argv[1].replace("bodies.csv", "probes.csv"), newline="")))
+assert len(probes) == len(rows), (len(probes), len(rows))
+ph = probes[0]
+assert ph[:2] == ["step", "time"] and (len(ph) - 2) % 7 == 0, ph
+for r, b in zip(probes[1:], rows[1:]):
+    assert len(r) == len(ph) and r[:2] == b[:2], (r[:2], b[:2])
+    [float(x) for x in r]
+for kind in sorted({h.rsplit(".", 1)[1] for h in ph[2:]}):
+    assert "`NAME." + kind + "`" in docs, "probe column " + kind + " not in docs/output.md"
+print("probes.csv: %d rows x %d columns" % (len(probes) - 1, len(ph)))
 PY
-echo "OK: batch progress, line-buffered stdout, bodies.csv"
+echo "OK: batch progress, line-buffered stdout, bodies.csv, probes.csv"

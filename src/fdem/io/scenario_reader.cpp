@@ -30,8 +30,9 @@ using io::Fields;
 using io::SourceText;
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kTopKeys = {"simulation", "output",  "material", "body",  "boundary",
-                                           "load",       "kick",       "damping", "contact",  "checks"};
+const std::vector<std::string> kTopKeys = {"simulation", "output",  "material", "body",
+                                           "boundary",   "load",    "kick",     "damping",
+                                           "contact",    "checks",  "probe"};
 const std::vector<std::string> kContactLawKeys = {"penalty",  "alpha",
                                                   "beta",     "length_scale",
                                                   "damping",  "damp_normal_only",
@@ -176,6 +177,7 @@ public:
         check_step_count(sc.run, end_time_loc_, "simulation.end_time",
                          src_.line(end_time_loc_.line));
         check_times(sc);
+        read_probes(root, sc);
         return sc;
     }
 
@@ -645,7 +647,6 @@ private:
                      {"body", "group", "fix", "velocity", "components", "start", "end"});
             const int b = body_index(f, "body");
             const BodyEntry& entry = bodies_[static_cast<size_t>(b)];
-            const MeshData& mesh = meshes_[static_cast<size_t>(entry.mesh)].data;
             const std::string group = f.string("group", std::nullopt);
             f.set_context(fmt::format("boundary \"{}\" of body \"{}\"", group, entry.name));
 
@@ -681,38 +682,7 @@ private:
                        fmt::format("end must be > start = {} s, got {}", bc.start, bc.end));
             }
 
-            // nodes: every group of that name (point, curve or surface), mapped to the body
-            std::vector<int32_t> mesh_nodes;
-            bool found = false;
-            for (const PhysicalGroup& g : mesh.groups) {
-                if (g.name == group) {
-                    found = true;
-                    const auto n = mesh.group_nodes(g);
-                    mesh_nodes.insert(mesh_nodes.end(), n.begin(), n.end());
-                }
-            }
-            if (!found) {
-                const std::string guess = io::closest(group, group_names(mesh));
-                f.fail(
-                    *f.node("group"), "group",
-                    fmt::format("mesh '{}' has no physical group \"{}\"{}; {}", mesh.file, group,
-                                guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
-                                available_groups(mesh)));
-            }
-            for (const int32_t n : mesh_nodes) {
-                const NodeId id = entry.node_map[static_cast<size_t>(n)];
-                if (id != kNone) {
-                    bc.nodes.push_back(id);
-                }
-            }
-            std::sort(bc.nodes.begin(), bc.nodes.end());
-            bc.nodes.erase(std::unique(bc.nodes.begin(), bc.nodes.end()), bc.nodes.end());
-            if (bc.nodes.empty()) {
-                f.fail(*f.node("group"), "group",
-                       fmt::format("physical group \"{}\" selects none of the nodes of body "
-                                   "\"{}\" (it lies on another part of mesh '{}')",
-                                   group, entry.name, mesh.file));
-            }
+            bc.nodes = group_nodes(f, entry, group);
             m.bcs.push_back(std::move(bc));
         }
     }
@@ -930,6 +900,108 @@ private:
                    fmt::format("physical group \"{}\" selects none of the edges of body \"{}\" "
                                "(it lies on another part of mesh '{}')",
                                group, entry.name, mesh.file));
+        }
+    }
+
+    // The model nodes of body entry `entry` in every physical group named `group` of its mesh
+    // (point, curve or surface), ascending; an error at key "group" if the mesh has no such
+    // group or the group selects none of the entry's nodes.
+    std::vector<NodeId> group_nodes(const Fields& f, const BodyEntry& entry,
+                                    const std::string& group) const {
+        const MeshData& mesh = meshes_[static_cast<size_t>(entry.mesh)].data;
+        std::vector<int32_t> mesh_nodes;
+        bool found = false;
+        for (const PhysicalGroup& g : mesh.groups) {
+            if (g.name == group) {
+                found = true;
+                const auto n = mesh.group_nodes(g);
+                mesh_nodes.insert(mesh_nodes.end(), n.begin(), n.end());
+            }
+        }
+        if (!found) {
+            const std::string guess = io::closest(group, group_names(mesh));
+            f.fail(*f.node("group"), "group",
+                   fmt::format("mesh '{}' has no physical group \"{}\"{}; {}", mesh.file, group,
+                               guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
+                               available_groups(mesh)));
+        }
+        std::vector<NodeId> nodes;
+        for (const int32_t n : mesh_nodes) {
+            const NodeId id = entry.node_map[static_cast<size_t>(n)];
+            if (id != kNone) {
+                nodes.push_back(id);
+            }
+        }
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        if (nodes.empty()) {
+            f.fail(*f.node("group"), "group",
+                   fmt::format("physical group \"{}\" selects none of the nodes of body "
+                               "\"{}\" (it lies on another part of mesh '{}')",
+                               group, entry.name, mesh.file));
+        }
+        return nodes;
+    }
+
+    // ---- [[probe]] (after finalize_model: nearest nodes need the built model) ---------------
+    void read_probes(const toml::table& root, Scenario& sc) {
+        const Model& m = sc.model;
+        const auto tables = table_array(src_, root, "probe", "probe");
+        std::map<std::string, int> first_line;
+        for (size_t i = 0; i < tables.size(); ++i) {
+            Fields f(src_, *tables[i], fmt::format("[[probe]] #{}", i + 1),
+                     fmt::format("probe[{}]", i), {"name", "position", "body", "group"});
+            ProbeSpec p;
+            p.name = f.string("name", std::nullopt);
+            if (p.name.empty()) {
+                f.fail(*f.node("name"), "name", "probe name must not be empty");
+            }
+            f.set_context(fmt::format("probe \"{}\"", p.name));
+            if (const auto it = first_line.find(p.name); it != first_line.end()) {
+                f.fail(*f.node("name"), "name",
+                       fmt::format("duplicate probe name \"{}\" (first defined on line {})",
+                                   p.name, it->second));
+            }
+            first_line[p.name] = f.location("name").line;
+            if (f.has("position") && f.has("group")) {
+                f.fail(*f.node("group"), "group",
+                       "give either 'position' (the nearest node) or 'group' (a physical group "
+                       "of the body's mesh), not both");
+            }
+            if (f.has("group") && !f.has("body")) {
+                f.fail(*f.node("group"), "group",
+                       "'group' needs 'body': the [[body]] whose mesh has the group");
+            }
+            if (!f.has("position") && !f.has("body")) {
+                f.fail_table(
+                    "give 'position' = [x, y] in m (the nearest node), 'body' (a whole body "
+                    "entry) or 'body' and 'group' (a physical group of its mesh)");
+            }
+            const int entry = f.has("body") ? body_index(f, "body") : -1;
+            if (f.has("position")) {
+                p.kind = ProbeSpec::Kind::Node;
+                p.position = f.vec2("position", std::nullopt, "m");
+                NodeId node = kNone;
+                TriId tri = kNone;
+                locate_probe(m, p.position, entry, node, tri);
+                p.nodes = {node};
+                p.tris = {tri};
+            } else if (f.has("group")) {
+                p.kind = ProbeSpec::Kind::Group;
+                const std::string group = f.string("group", std::nullopt);
+                p.nodes = group_nodes(f, bodies_[static_cast<size_t>(entry)], group);
+                p.tris = probe_triangles(m, p.nodes);
+            } else {
+                p.kind = ProbeSpec::Kind::Body;
+                for (const Body& b : m.bodies) {
+                    if (b.group != entry) continue;
+                    for (NodeId n = b.node_begin; n < b.node_end; ++n)
+                        p.nodes.push_back(n);
+                    for (TriId t = b.tri_begin; t < b.tri_end; ++t)
+                        p.tris.push_back(t);
+                }
+            }
+            sc.run.output.probes.push_back(std::move(p));
         }
     }
 
