@@ -117,7 +117,7 @@ void print_summary(const fdem::Scenario& sc) {
         fmt::print("stable dt  {:.4g} s (limited by the contact penalty)\n", sc.run.stable_dt);
     }
     fmt::print("dt         {:.4g} s{}\n", sc.run.dt,
-               sc.run.dt_auto ? fmt::format(" (auto: {} x stable)", sc.run.dt_fraction) : "");
+               sc.run.dt_auto ? fmt::format(" (auto: {:.3g} x stable)", sc.run.dt_fraction) : "");
     fmt::print("end time   {:.6g} s ({} steps)\n", sc.run.end_time,
                static_cast<long long>(std::ceil(sc.run.end_time / sc.run.dt - 1e-9)));
     fmt::print("memory     {:.2f} MB (model + state, estimate)\n", memory_estimate(m) / 1e6);

@@ -51,9 +51,15 @@ void finalize_model(Model& m);
 /// Effective 2-D Lame constants of a material (docs/theory.md eq. 2.5).
 void compute_lame(Material& mat);
 
-/// Stable central-difference time step [s] (docs/theory.md §5): min over elements of
-/// h_min / c_p and, with contact, the contact frequency bound. limiting_tri receives the element
-/// that sets the limit (kNone when the contact bound governs).
+/// Stable central-difference time step [s] (docs/theory.md §5, §6.9): the element limit
+/// dt_e (below) and, with contact, the contact frequency bound dt_c combined as
+/// 1 / sqrt(1/dt_e^2 + 1/dt_c^2) (eq. 6.17: both stiffnesses act on the boundary nodes).
+/// limiting_tri receives the element that sets dt_e when dt_e <= dt_c, kNone when the contact
+/// bound governs.
 Real stable_time_step(const Model& m, TriId* limiting_tri = nullptr);
+
+/// The element part of stable_time_step(): min over the movable triangles of h_min / c_p
+/// (eq. 5.3, 5.4) and the triangle that sets it (kNone: no movable triangle).
+Real element_stable_time_step(const Model& m, TriId* limiting_tri = nullptr);
 
 }  // namespace fdem

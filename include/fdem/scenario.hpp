@@ -31,7 +31,9 @@ struct CheckSettings {
 struct RunSettings {
     Real dt = 0;                 ///< time step [s] actually used
     bool dt_auto = false;        ///< dt = "auto" was given
-    Real dt_fraction = 0.5;      ///< safety fraction of the stable limit used by dt = "auto"
+    /// fraction of the stable limit used by dt = "auto"; without dt_fraction in the scenario,
+    /// min(0.5 x element limit, 0.2 x contact limit) / stable limit (docs/theory.md §6.9)
+    Real dt_fraction = 0.5;
     Real end_time = 0;           ///< [s]
     Real stable_dt = 0;          ///< stable limit computed at load [s]
     TriId limiting_tri = kNone;  ///< element setting the stable limit

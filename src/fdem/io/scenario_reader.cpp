@@ -19,11 +19,17 @@
 #include "fdem/error.hpp"
 #include "fdem/mesh.hpp"
 #include "fdem/scenario.hpp"
+#include "contact/contact.hpp"
 #include "io/toml_fields.hpp"
 
 namespace fdem {
 
 namespace {
+
+/// Default fractions of dt = "auto" without dt_fraction (docs/theory.md §6.9): of the element
+/// limit (eq. 5.3) and of the contact limit (eq. 6.15).
+constexpr Real kDefaultElementFraction = 0.5;
+constexpr Real kDefaultContactFraction = 0.2;
 
 using io::Bounds;
 using io::Fields;
@@ -220,7 +226,11 @@ private:
             f.fail(*f.node("dt_fraction"), "dt_fraction",
                    "dt_fraction only applies with dt = \"auto\"; remove it or set dt = \"auto\"");
         }
-        run.dt_fraction = f.real("dt_fraction", 0.5, "", {0.0, 1.0, true, false});
+        // not given: 0 here, chosen by choose_dt() (0.5 of the element limit, 0.2 of the
+        // contact limit, docs/theory.md §6.9)
+        run.dt_fraction = f.has("dt_fraction")
+                              ? f.real("dt_fraction", 0.5, "", {0.0, 1.0, true, false})
+                              : 0.0;
         sc.model.gravity = f.vec2("gravity", Vec2{0, 0}, "m/s^2");
     }
 
@@ -1211,7 +1221,18 @@ private:
                                  "no body moves and contact is off; give dt in s",
                                  line);
             }
-            run.dt = run.dt_fraction * stable;
+            if (run.dt_fraction > 0) {
+                run.dt = run.dt_fraction * stable;
+                return;
+            }
+            // default: 0.5 of the element limit (eq. 5.3) but 0.2 of the contact limit
+            // (eq. 6.15): the linear bound of the contact is right (0.90 of 2 / omega_max
+            // measured by power iteration), but a penalty spring that switches on and off
+            // gains energy at omega_max dt ~ 0.9 (docs/theory.md §6.9)
+            const Real contact = contact_stable_dt(m);
+            const Real element = element_stable_time_step(m);
+            run.dt = std::min(kDefaultElementFraction * element, kDefaultContactFraction * contact);
+            run.dt_fraction = run.dt / stable;
             return;
         }
         if (run.dt > stable) {
