@@ -2,9 +2,10 @@
 // eq. 6.11): a block sliding to rest on a fixed slab, no damping of any kind. The friction
 // dissipation is the work of the friction force minus the change of the stored tangential
 // energy, so the balance of eq. 4.1 closes at second order in dt: the error shrinks ~4x per
-// halving: 3.8e-3, 8.8e-4, 2.1e-4 of the initial kinetic energy at the three steps below.
+// halving: 3.2e-3, 7.9e-4, 1.8e-4 of the initial kinetic energy at the three steps below.
 // (Booking only the capped force times the slip left the spring energy released by a falling
-// cap mu |f_n| unbooked, a first-order error: 6.3e-2, 3.1e-2, 1.6e-2, ratio ~2 per halving.)
+// cap mu |f_n| unbooked, a first-order error: 6.3e-2, 3.1e-2, 1.6e-2, ratio ~2 per halving, at
+// 0.2 of the stable limit before eq. 6.17 lowered it by 3 %.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -48,10 +49,14 @@ Real balance_error(const Model& m, Real dt, Real* slid) {
     }
     const NodeId corner = m.bodies[1].node_begin;
     *slid = s.x[corner].x - m.node_x0[corner].x;
-    Real ke = 0;
-    for (NodeId i = 0; i < m.num_nodes(); ++i)
-        ke += 0.5 * m.node_mass[i] * norm2(s.v[i]);
-    EXPECT_LT(ke, 0.01 * ke0) << "the block must have come to rest";
+    // the block has stopped sliding: its mean horizontal velocity is below 5 % of v0 = 0.5 m/s
+    // (what is left is the undamped rocking on the contact springs, ~0.01-0.02 m/s)
+    Real px = 0, mass = 0;
+    for (NodeId i = m.bodies[1].node_begin; i < m.bodies[1].node_end; ++i) {
+        px += m.node_mass[i] * s.v[i].x;
+        mass += m.node_mass[i];
+    }
+    EXPECT_LT(std::abs(px / mass), 0.025) << "the block must have come to rest";
     return err / ke0;
 }
 
@@ -80,7 +85,8 @@ TEST(FrictionEnergy, SlidingToRestClosesTheBalanceAtSecondOrder) {
 
 // The same with contact damping gamma = 3000 N s/m^2 (normal and tangential): its dissipation is
 // the trapezoidal work of the damping force (theory eq. 6.10), second order as well (booking
-// gamma |v_r|^2 dt with v^{n-1/2} gave 1.8e-2, 9.0e-3, 4.5e-3, ratio 2).
+// gamma |v_r|^2 dt with v^{n-1/2} gave 1.8e-2, 9.0e-3, 4.5e-3, ratio 2; now 6.7e-4, 1.8e-4,
+// 5.3e-5).
 TEST(FrictionEnergy, SlidingToRestWithContactDampingClosesAtSecondOrder) {
     const Model m = sliding_block(3000.0);
     const Real dt0 = 0.2 * stable_time_step(m);
