@@ -1209,12 +1209,6 @@ private:
             limit = fmt::format("the contact penalty (largest k_n = {:g} Pa)", kn);
         }
         if (run.dt_auto) {
-            run.dt_cause = fmt::format("dt = \"auto\" = {:g} x the stable limit {:.4g} s set by {}",
-                                       run.dt_fraction, stable, limit);
-        } else {
-            run.dt_cause = fmt::format("dt = {:g} s is given in [simulation]", run.dt);
-        }
-        if (run.dt_auto) {
             if (!std::isfinite(stable)) {
                 throw InputError(dt_loc_, "simulation.dt",
                                  "[simulation]: dt = \"auto\" needs a stable time step limit, but "
@@ -1223,18 +1217,22 @@ private:
             }
             if (run.dt_fraction > 0) {
                 run.dt = run.dt_fraction * stable;
-                return;
+            } else {
+                // default: 0.5 of the element limit (eq. 5.3) but 0.2 of the contact limit
+                // (eq. 6.15): the linear bound of the contact is right (0.90 of 2 / omega_max
+                // measured by power iteration), but a penalty spring that switches on and off
+                // gains energy at omega_max dt ~ 0.9 (docs/theory.md §6.9)
+                const Real contact = contact_stable_dt(m);
+                const Real element = element_stable_time_step(m);
+                run.dt =
+                    std::min(kDefaultElementFraction * element, kDefaultContactFraction * contact);
+                run.dt_fraction = run.dt / stable;
             }
-            // default: 0.5 of the element limit (eq. 5.3) but 0.2 of the contact limit
-            // (eq. 6.15): the linear bound of the contact is right (0.90 of 2 / omega_max
-            // measured by power iteration), but a penalty spring that switches on and off
-            // gains energy at omega_max dt ~ 0.9 (docs/theory.md §6.9)
-            const Real contact = contact_stable_dt(m);
-            const Real element = element_stable_time_step(m);
-            run.dt = std::min(kDefaultElementFraction * element, kDefaultContactFraction * contact);
-            run.dt_fraction = run.dt / stable;
+            run.dt_cause = fmt::format("dt = \"auto\" = {:.3g} x the stable limit {:.4g} s set by {}",
+                                       run.dt_fraction, stable, limit);
             return;
         }
+        run.dt_cause = fmt::format("dt = {:g} s is given in [simulation]", run.dt);
         if (run.dt > stable) {
             std::string what;
             if (tri != kNone) {
