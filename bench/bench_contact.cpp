@@ -41,7 +41,8 @@ void BM_NarrowPhase(benchmark::State& st) {
     int64_t survivors = 0;
     for (size_t p = 0; p < s.contact.cand_node.size(); ++p) {
         survivors +=
-            !box_rejects(s.contact.body_box[s.contact.cand_body[p]], s.x[s.contact.cand_node[p]]);
+            !box_rejects(s.contact.body_box[s.contact.cand_body[p]],
+                        target_point(m.contact, s.x.data(), s.contact.cand_node[p]));
     }
     st.counters["box_pass"] = static_cast<double>(survivors) / pairs;
     st.counters["sub_tris"] = m.contact.num_sub_tris();

@@ -103,6 +103,14 @@ struct ContactModel {
     /// sub-triangulation of composite elements in the paper's special cases (smooth contact only;
     /// baseline B always uses the Split layout, see docs/theory.md §6.1.1)
     CompositeSpecialCase composite_special_case = CompositeSpecialCase::Fan;
+    /// Targets at the midpoints of the boundary edges besides the boundary nodes, carrying 2/3
+    /// of the nodes' force scale (docs/theory.md §6.12, eq. 6.17; smooth contact only): without
+    /// them two faces meeting corner to corner in exactly aligned rows never touch
+    bool edge_targets = true;
+    /// Bodies overlapping at t = 0 (deeper than 1e-6 h_min): false = an input error at load
+    /// (scenario key [contact] initial_overlap = "error"), true = allowed, e.g. an intended
+    /// prestress ("allow"). Read by the scenario loader only (docs/theory.md §6.14).
+    bool allow_initial_overlap = false;
 
     // ---- derived (build_contact_topology) -------------------------------------------------
     /// Laws resolved (every default filled in) per pair of material classes: class 0 = every
@@ -123,6 +131,17 @@ struct ContactModel {
     /// m_j / node_scale[j] (= m_bar for ContactScaling::Mass, docs/theory.md §6.11)
     Real m_dt = 0;
 
+    /// Edge targets (docs/theory.md §6.12): target id edge_target_base + e is the midpoint of
+    /// boundary_edges[e], its force goes half to each end node and edge_scale[e] is its force
+    /// scale (eq. 6.17); then node_scale holds the share the boundary nodes keep. edge_scale is
+    /// empty without edge targets. Target ids: [0, num_real_nodes) boundary nodes, then
+    /// [edge_target_base, target_end()) edge midpoints (edge_target_base = num_contact_nodes()).
+    NodeId edge_target_base = 0;
+    std::vector<Real> edge_scale;
+    /// target-side factor of the stable dt (eq. 6.15): largest row sum of the target stiffness
+    /// over the node mass, in units of k / m_dt; 1 without edge targets (docs/theory.md §6.12)
+    Real target_dt_factor = 1;
+
     int32_t num_real_nodes = 0;                      ///< = Model::num_nodes()
     std::vector<std::array<NodeId, 3>> virt_parent;  ///< parents of each virtual node
     std::vector<std::array<Real, 3>> virt_weight;    ///< frozen weights (sum 1)
@@ -131,6 +150,9 @@ struct ContactModel {
     /// (real then virtual). 0 on boundary nodes; 0 also for inner nodes of non-boundary elements
     /// (they never appear in a contactor triangle).
     std::vector<Real> node_dist;
+    /// the boundary edge that gave node_dist (eq. 6.3 candidate or fallback), -1 for boundary
+    /// nodes and unused nodes (load-time check of thin bodies, docs/theory.md §6.13)
+    std::vector<int32_t> node_dist_edge;
     std::vector<uint8_t> node_on_boundary;  ///< per real node: 1 = boundary node
     int32_t num_fallback_nodes = 0;         ///< nodes whose distance came from the fallback
 
@@ -174,7 +196,31 @@ struct ContactModel {
     int32_t num_virtual() const { return static_cast<int32_t>(virt_parent.size()); }
     int32_t num_contact_nodes() const { return num_real_nodes + num_virtual(); }
     int32_t num_sub_tris() const { return static_cast<int32_t>(sub_tri.size()); }
+    int32_t num_edge_targets() const { return static_cast<int32_t>(edge_scale.size()); }
+    NodeId target_end() const { return edge_target_base + num_edge_targets(); }
 };
+
+/// A real node of target t (docs/theory.md §6.12): t itself for a boundary node, the first end
+/// node of the edge for an edge target (same body; used for body look-ups and messages).
+inline NodeId target_node(const ContactModel& cm, NodeId t) {
+    if (t < cm.num_real_nodes) return t;
+    return cm.boundary_edges[static_cast<size_t>(t - cm.edge_target_base)][0];
+}
+
+/// Position (or velocity, with v for x) of target t: the node, or the edge midpoint
+/// (x_a + x_b) / 2 of an edge target.
+inline Vec2 target_point(const ContactModel& cm, const Vec2* x, NodeId t) {
+    if (t < cm.num_real_nodes) return x[t];
+    const auto& e = cm.boundary_edges[static_cast<size_t>(t - cm.edge_target_base)];
+    return 0.5 * (x[e[0]] + x[e[1]]);
+}
+
+/// Force scale of target t: m_j / mbar (eq. 19) or l_j / lbar, with edge targets the node's
+/// share of it, or edge_scale of an edge target (eq. 6.17).
+inline Real target_scale(const ContactModel& cm, NodeId t) {
+    if (t < cm.num_real_nodes) return cm.node_scale[static_cast<size_t>(t)];
+    return cm.edge_scale[static_cast<size_t>(t - cm.edge_target_base)];
+}
 
 /// Does body c act as contactor for the boundary nodes of body t? (role rule of
 /// ContactModel::two_way). Never true for c == t.

@@ -60,6 +60,21 @@ bool inside_body(const ContactModel& cm, BodyId c, const Vec2* x, Vec2 p) {
     return in;
 }
 
+// force f on target t: the node, or half to each end node of an edge target (theory §6.12)
+inline void add_target_force(const ContactModel& cm, State& s, NodeId t, Vec2 f) {
+    if (t < cm.num_real_nodes) {
+        s.f[t] += f;
+        s.f_contact[t] += f;
+        return;
+    }
+    const auto& e = cm.boundary_edges[static_cast<size_t>(t - cm.edge_target_base)];
+    const Vec2 h = 0.5 * f;
+    s.f[e[0]] += h;
+    s.f_contact[e[0]] += h;
+    s.f[e[1]] += h;
+    s.f_contact[e[1]] += h;
+}
+
 // force f on contact node i (virtual: to its parents with the frozen weights, spec §4.4-6)
 inline void add_node_force(const ContactModel& cm, State& s, NodeId i, Vec2 f) {
     if (i < cm.num_real_nodes) {
@@ -102,7 +117,7 @@ void init_contact_state(const Model& m, State& s) {
         return;
     }
     const size_t nv = static_cast<size_t>(cm.num_virtual());
-    const size_t nb = cm.boundary_nodes.size();
+    const size_t nb = cm.boundary_nodes.size() + cm.edge_scale.size();  // targets
     const size_t nt = static_cast<size_t>(cm.num_sub_tris());
     cs.xv.assign(nv, Vec2{});
     cs.vv.assign(nv, Vec2{});
@@ -334,14 +349,15 @@ namespace {
     out.hist = has_hist ? static_cast<int32_t>(it - cs.active.begin()) : -1;
 
     // the law (eqs. 5-19) with v_r = v_c - v_j, v_c = sum N_i v_i (eq. 13)
-    const BodyId bt = m.node_body[j];
+    const BodyId bt = m.node_body[target_node(cm, j)];
     const ContactParams& p = pair_parameters(cm, m.bodies[c].material, m.bodies[bt].material);
-    const Real scale = cm.node_scale[j];  // m_j / mbar (eq. 19) or l_j / lbar
+    const Real scale = target_scale(cm, j);  // m_j / mbar (eq. 19), l_j / lbar, or eq. 6.17
     Vec2 vc;
     for (int k = 0; k < 3; ++k)
         vc += fs.N[k] * cpos(cm, v, vv, q[k]);
     out.h = has_hist ? it->h : PairHistory{};
-    const LawResult r = contact_law(p, fs.d, fs.grad, vc - v[j], scale, dt, out.h);
+    const LawResult r =
+        contact_law(p, fs.d, fs.grad, vc - target_point(cm, v, j), scale, dt, out.h);
 
     // depth diagnostics: d relative to the local layer thickness
     out.h.depth_ratio = fs.layer > 0 ? fs.d / fs.layer : 1.0;
@@ -371,7 +387,7 @@ int32_t evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, con
     const NodeId j = cs.cand_node[pr];
 
     // locate x_j: the candidate sub-triangle with the largest min N_i >= -eps
-    const Vec2 xj = x[j];
+    const Vec2 xj = target_point(cm, x, j);
     int32_t best = -1;
     Real best_min = -kLocateEps;
     Real bN[3];
@@ -505,7 +521,7 @@ void add_contact_forces(const Model& m, State& s) {
                     if (pr + kBoxPrefetch < e)
                         __builtin_prefetch(&box[cand_body[pr + kBoxPrefetch]]);
                     in_contact[n] = pr;
-                    n += !box_rejects(box[cand_body[pr]], x[cand_node[pr]]);
+                    n += !box_rejects(box[cand_body[pr]], target_point(cm, x, cand_node[pr]));
                 }
                 // pass 2: locate and law of those; the pairs in contact, compacted in place
                 int32_t nc = b;
@@ -526,12 +542,13 @@ void add_contact_forces(const Model& m, State& s) {
     size_t ia = 0;
     cs.active_next.clear();
     auto release = [&](const ActiveContact& a) {
-        const BodyId bt = m.node_body[a.node];
+        const BodyId bt = m.node_body[target_node(cm, a.node)];
         const ContactParams& p =
             pair_parameters(cm, m.bodies[a.body].material, m.bodies[bt].material);
-        const Real scale = cm.node_scale[a.node];
+        const Real scale = target_scale(cm, a.node);
         bool lost = false;
-        if (a.h.depth_ratio > kLostCheckRatio && inside_body(cm, a.body, x, x[a.node])) {
+        if (a.h.depth_ratio > kLostCheckRatio &&
+            inside_body(cm, a.body, x, target_point(cm, x, a.node))) {
             lost = true;  // left the boundary layer inwards: penetration too deep (spec §4.6)
             ++cs.lost_inside;
             if (cs.lost_node < 0 || a.h.depth_ratio > cs.lost_depth_ratio) {
@@ -559,8 +576,7 @@ void add_contact_forces(const Model& m, State& s) {
 
             // f on the target, -N_i f on the contactor (eq. 20)
             const auto& q = cm.sub_tri[o.tri];
-            s.f[j] += o.f;
-            s.f_contact[j] += o.f;
+            add_target_force(cm, s, j, o.f);
             for (int kk = 0; kk < 3; ++kk)
                 add_node_force(cm, s, q[kk], -o.N[kk] * o.f);
 
@@ -645,9 +661,13 @@ Real contact_stable_dt(const Model& m) {
     // = (k g' / mbar)(1 + m_j / m_i) (the 1/m_j term vanishes for a fixed target, the m_j/m_i term
     // does not). Bound it by the heaviest target over the lightest movable contactor node: with
     // heavy base nodes pushing light block nodes the old factor 2 was unstable.
+    // Edge targets (theory §6.12): a midpoint of scale w acts like a node of mass w m_dt, and
+    // the target-side term 1 becomes the row-sum bound target_dt_factor
     Real m_target_max = 0, m_contactor_min = std::numeric_limits<Real>::infinity();
     for (NodeId j : cm.boundary_nodes)
         m_target_max = std::max(m_target_max, m.node_mass[j]);
+    for (const Real w : cm.edge_scale)
+        m_target_max = std::max(m_target_max, w * cm.m_dt);
     for (int32_t t = 0; t < cm.num_sub_tris(); ++t) {
         for (NodeId i : cm.sub_tri[t]) {
             if (i >= cm.num_real_nodes || m.node_inv_mass[i] == 0) continue;
@@ -655,8 +675,8 @@ Real contact_stable_dt(const Model& m) {
         }
     }
     const Real mass_factor = std::isfinite(m_contactor_min) && m_contactor_min > 0
-                                 ? 1.0 + m_target_max / m_contactor_min
-                                 : 2.0;
+                                 ? cm.target_dt_factor + m_target_max / m_contactor_min
+                                 : 1.0 + cm.target_dt_factor;
 
     // stiffness factor g' at the deepest penetration expected, d_ref = 0.1 h_min (spec §4.6);
     // the unloading branch is up to beta times stiffer than the loading one (theory eq. 6.13)

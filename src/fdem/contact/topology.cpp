@@ -404,12 +404,14 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
     //    minimum over the sub-triangles (reference configuration, frozen)
     constexpr Real kUnset = std::numeric_limits<Real>::infinity();
     cm_.node_dist.resize(static_cast<size_t>(cm_.num_contact_nodes()), 0.0);
+    cm_.node_dist_edge.resize(static_cast<size_t>(cm_.num_contact_nodes()), -1);
     for (size_t s = sub_begin; s < cm_.sub_tri.size(); ++s) {
         for (NodeId i : cm_.sub_tri[s]) {
             const bool bnode = i < cm_.num_real_nodes && cm_.node_on_boundary[i];
             if (!bnode) cm_.node_dist[i] = kUnset;
         }
     }
+    const int32_t e_first = cm_.body_bedge_begin[b];  // bkeys_[k] is boundary edge e_first + k
     for (size_t s = sub_begin; s < cm_.sub_tri.size(); ++s) {
         const auto& q = cm_.sub_tri[s];
         const Real a2 = cross(x0(q[1]) - x0(q[0]), x0(q[2]) - x0(q[0]));  // 2A
@@ -419,7 +421,11 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
             if (!has_key(bkeys_, p, r)) continue;
             if (o < cm_.num_real_nodes && cm_.node_on_boundary[o]) continue;
             const Real h = a2 / norm(x0(r) - x0(p));
-            cm_.node_dist[o] = std::min(cm_.node_dist[o], h);
+            if (h < cm_.node_dist[o]) {
+                cm_.node_dist[o] = h;
+                const auto it = std::lower_bound(bkeys_.begin(), bkeys_.end(), key(p, r));
+                cm_.node_dist_edge[o] = e_first + static_cast<int32_t>(it - bkeys_.begin());
+            }
         }
     }
 
@@ -433,13 +439,61 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
             const Vec2 xi = x0(i);
             for (size_t e = e0; e < e1; ++e) {
                 const auto& be = cm_.boundary_edges[e];
-                dmin = std::min(dmin,
-                                point_segment_distance(xi, m_.node_x0[be[0]], m_.node_x0[be[1]]));
+                const Real d = point_segment_distance(xi, m_.node_x0[be[0]], m_.node_x0[be[1]]);
+                if (d < dmin) {
+                    dmin = d;
+                    cm_.node_dist_edge[i] = static_cast<int32_t>(e);
+                }
             }
             cm_.node_dist[i] = dmin;
             ++cm_.num_fallback_nodes;
         }
     }
+}
+
+// Edge targets (docs/theory.md §6.12): the midpoint of every boundary edge becomes a target.
+// The force scale s_j of each boundary node (eq. 19 or 6.16) is shared out as the weights of
+// the three-point Gauss-Lobatto (Simpson) rule on each of its edges: node j's part on edge e is
+// sigma_je = s_j l_e / L_j (L_j = the lengths of its boundary edges); the node keeps 1/3 of
+// every part and the midpoint of e gets 2/3 (sigma_ae + sigma_be) (eq. 6.17), so the total scale
+// of a body is unchanged. With length scaling this is Simpson's rule on every edge exactly.
+// target_dt_factor: the target stiffness is no longer diagonal (a midpoint moves with both end
+// nodes); its largest row sum per node mass bounds the target-side term of eq. 6.15 (Gershgorin).
+void add_edge_targets(Model& m) {
+    ContactModel& cm = m.contact;
+    const size_t ne = cm.boundary_edges.size();
+    std::vector<Real> len(ne), tributary(static_cast<size_t>(m.num_nodes()), 0.0);
+    for (size_t e = 0; e < ne; ++e) {
+        const auto& be = cm.boundary_edges[e];
+        len[e] = norm(m.node_x0[be[1]] - m.node_x0[be[0]]);
+        tributary[be[0]] += len[e];
+        tributary[be[1]] += len[e];
+    }
+    cm.edge_scale.assign(ne, 0.0);
+    for (size_t e = 0; e < ne; ++e) {
+        Real w = 0;
+        for (NodeId i : cm.boundary_edges[e]) {
+            if (tributary[i] > 0) w += cm.node_scale[i] * (len[e] / tributary[i]);
+        }
+        cm.edge_scale[e] = (2.0 / 3.0) * w;
+    }
+    for (NodeId i : cm.boundary_nodes)
+        cm.node_scale[i] *= 1.0 / 3.0;
+
+    // row sums of the target stiffness (units k): own share + half of each adjacent midpoint's
+    std::vector<Real> row(static_cast<size_t>(m.num_nodes()), 0.0);
+    for (NodeId i : cm.boundary_nodes)
+        row[i] = cm.node_scale[i];
+    for (size_t e = 0; e < ne; ++e) {
+        for (NodeId i : cm.boundary_edges[e])
+            row[i] += 0.5 * cm.edge_scale[e];
+    }
+    Real factor = 1;  // never below the node-only bound
+    for (NodeId i : cm.boundary_nodes) {
+        if (m.node_inv_mass[i] > 0 && m.node_mass[i] > 0)
+            factor = std::max(factor, row[i] * cm.m_dt / m.node_mass[i]);
+    }
+    cm.target_dt_factor = factor;
 }
 
 }  // namespace
@@ -479,6 +533,7 @@ void build_contact_topology(Model& m) {
     cm.virt_parent.clear();
     cm.virt_weight.clear();
     cm.node_dist.clear();
+    cm.node_dist_edge.clear();
     cm.node_on_boundary.clear();
     cm.boundary_nodes.clear();
     cm.body_bnode_begin.clear();
@@ -496,7 +551,10 @@ void build_contact_topology(Model& m) {
     cm.body_cnode_nreal.clear();
     cm.sub_local.clear();
     cm.num_fallback_nodes = 0;
+    cm.edge_scale.clear();
+    cm.target_dt_factor = 1;
     cm.num_real_nodes = m.num_nodes();
+    cm.edge_target_base = cm.num_real_nodes;
     if (cm.algorithm == ContactAlgorithm::None) return;
     // the legacy potentials (docs/theory.md §7) use the same topology: baseline A its
     // boundary_tris, parameters and buffer, baseline B also the sub-triangles
@@ -533,6 +591,7 @@ void build_contact_topology(Model& m) {
         cm.body_fixed[b] = m.bodies[b].fixed ? 1 : 0;
     cm.node_on_boundary.assign(static_cast<size_t>(m.num_nodes()), 0);
     cm.node_dist.assign(static_cast<size_t>(m.num_nodes()), 0.0);
+    cm.node_dist_edge.assign(static_cast<size_t>(m.num_nodes()), -1);
     cm.body_bnode_begin.push_back(0);
     cm.body_bedge_begin.push_back(0);
     cm.body_sub_begin.push_back(0);
@@ -540,6 +599,7 @@ void build_contact_topology(Model& m) {
     for (BodyId b = 0; b < m.num_bodies(); ++b)
         tb.body(b);
     cm.node_dist.resize(static_cast<size_t>(cm.num_contact_nodes()), 0.0);
+    cm.node_dist_edge.resize(static_cast<size_t>(cm.num_contact_nodes()), -1);
     build_body_contact_nodes(cm);
 
     // scale of the force on a target node (docs/theory.md §6.11): m_j / mbar (eq. 19) or
@@ -569,6 +629,9 @@ void build_contact_topology(Model& m) {
         }
         cm.m_dt = std::isfinite(m_dt) ? m_dt : cm.m_bar;
     }
+
+    cm.edge_target_base = cm.num_contact_nodes();
+    if (cm.edge_targets && cm.algorithm == ContactAlgorithm::Smooth) add_edge_targets(m);
 
     // baseline B: phi_B per contactor sub-triangle (spec §1.3, docs/theory.md §7.4)
     if (cm.algorithm == ContactAlgorithm::LegacyBoundary) {

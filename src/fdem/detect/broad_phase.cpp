@@ -125,14 +125,19 @@ void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, ContactState
     detail::CandWriter w(cs);
     const bool simd = kernel == BroadKernel::Auto && detail::scan_avx512_supported();
     int32_t* __restrict hits = cs.query.data();
-    for (NodeId j : cm.boundary_nodes) {
+    // (boundary nodes, then the edge targets of docs/theory.md §6.12: ascending target ids)
+    auto query = [&](NodeId j) {
         detail::Block blk;
-        if (!detail::node_block(m, ng, j, x[j], blk)) continue;
+        if (!detail::node_block(m, ng, j, target_point(cm, x, j), blk)) return;
         const int32_t nh =
             simd ? detail::scan_block_avx512(a, blk, hits) : detail::scan_block(a, blk, hits);
         detail::sort_hits(hits, nh);
         if (nh > 0) detail::emit(cm, j, hits, nh, w);
-    }
+    };
+    for (NodeId j : cm.boundary_nodes)
+        query(j);
+    for (NodeId j = cm.edge_target_base; j < cm.target_end(); ++j)
+        query(j);
     w.finish();
 }
 
@@ -140,18 +145,23 @@ void find_candidates_brute_force(const Model& m, const Vec2* x, const Vec2* xv, 
     const ContactModel& cm = m.contact;
     bounding_circles(m, x, xv, cs);
     detail::CandWriter w(cs);
-    for (NodeId j : cm.boundary_nodes) {
+    auto query = [&](NodeId j) {
         cs.query.clear();
+        const Vec2 xj = target_point(cm, x, j);
         for (int32_t t = 0; t < cm.num_sub_tris(); ++t) {
             const Real reach = cs.tri_radius[t] + cm.buffer;
-            if (norm2(x[j] - cs.tri_center[t]) >= reach * reach) continue;
-            if (!is_contactor_for(cm, cm.sub_body[t], m.node_body[j])) continue;
+            if (norm2(xj - cs.tri_center[t]) >= reach * reach) continue;
+            if (!is_contactor_for(cm, cm.sub_body[t], m.node_body[target_node(cm, j)])) continue;
             cs.query.push_back(t);
         }
         if (!cs.query.empty()) {
             detail::emit(cm, j, cs.query.data(), static_cast<int32_t>(cs.query.size()), w);
         }
-    }
+    };
+    for (NodeId j : cm.boundary_nodes)
+        query(j);
+    for (NodeId j = cm.edge_target_base; j < cm.target_end(); ++j)
+        query(j);
     w.finish();
 }
 

@@ -103,7 +103,7 @@ struct Block {
 /// a one-way model) or lies outside the grid by more than a cell (or is NaN).
 inline bool node_block(const Model& m, const NodeGrid& g, NodeId j, Vec2 xj, Block& q) {
     const ContactModel& cm = m.contact;
-    const BodyId bj = m.node_body[j];
+    const BodyId bj = m.node_body[target_node(cm, j)];
     const bool fixed_j = cm.body_fixed[static_cast<size_t>(bj)] != 0;
     if (!cm.two_way && fixed_j) return false;  // one-way: a fixed body is never a target
     q.xj = xj;

@@ -53,12 +53,21 @@ std::string check_run(const Model& m, const State& s, const RunSettings& run, En
         // the deepest of them (contact/contact.cpp records it), with body names for the user
         const NodeId j = cs.lost_node;
         const BodyId into = cs.lost_body;
-        if (j >= 0 && j < m.num_nodes() && into >= 0 && into < m.num_bodies()) {
-            const BodyId bj = m.node_body[j];
+        const ContactModel& cm = m.contact;
+        if (j >= 0 && j < cm.target_end() && into >= 0 && into < m.num_bodies()) {
+            const BodyId bj = m.node_body[target_node(cm, j)];
+            const Vec2 xj = target_point(cm, s.x.data(), j);
+            // an edge target (docs/theory.md §6.12) is named by its edge's end nodes
+            const std::string who =
+                j < m.num_nodes()
+                    ? fmt::format("node {}", j)
+                    : fmt::format("the midpoint of boundary edge {}-{}",
+                                  cm.boundary_edges[static_cast<size_t>(j - cm.edge_target_base)][0],
+                                  cm.boundary_edges[static_cast<size_t>(j - cm.edge_target_base)][1]);
             what += fmt::format(
-                "; node {} (body {} \"{}\", at ({:.6g}, {:.6g}) m, d / layer = {:.3g} when last "
+                "; {} (body {} \"{}\", at ({:.6g}, {:.6g}) m, d / layer = {:.3g} when last "
                 "in contact) is inside body {} \"{}\"",
-                j, bj, m.bodies[bj].name, s.x[j].x, s.x[j].y, cs.lost_depth_ratio, into,
+                who, bj, m.bodies[bj].name, xj.x, xj.y, cs.lost_depth_ratio, into,
                 m.bodies[into].name);
         }
         what += "; the contact force is lost there";

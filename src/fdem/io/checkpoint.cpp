@@ -393,6 +393,7 @@ uint64_t model_hash(const Model& m, Real dt) {
     put(h, c.deep_ratio_limit);
     put(h, c.scaling);
     put(h, c.node_scale);
+    put(h, c.edge_scale);
     put(h, c.node_dist);
     put(h, c.virt_parent);
     put(h, c.virt_weight);
@@ -535,7 +536,7 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     r.get(l.active);
 
     // ids read back must index the model (a corrupt file must not crash the contact code)
-    const int32_t nb = m.num_bodies(), ncn = m.contact.num_contact_nodes();
+    const int32_t nb = m.num_bodies(), ncn = m.contact.target_end();  // target ids
     const int32_t nsub = m.contact.num_sub_tris();
     const auto bad_id = [](int32_t id, int32_t n) { return id < 0 || id >= n; };
     bool ok = c.cand_node.size() == c.cand_body.size() &&
@@ -553,7 +554,7 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     for (size_t k = 0; ok && k < c.cand_tri.size(); ++k)
         ok = !bad_id(c.cand_tri[k], nsub);
     for (size_t k = 0; ok && k < c.active.size(); ++k) {
-        ok = !bad_id(c.active[k].node, static_cast<int32_t>(nn)) && !bad_id(c.active[k].body, nb);
+        ok = !bad_id(c.active[k].node, ncn) && !bad_id(c.active[k].body, nb);
     }
     for (const LegacyCouple& cp : l.couples) {
         ok = ok && !bad_id(cp.a, m.num_tris()) && !bad_id(cp.b, m.num_tris());

@@ -1,6 +1,7 @@
 // T6 (spec §8): the pair forces of add_contact_forces sum to zero with zero moment (including
 // the redistribution of virtual-node shares to parents), and the force on a target node is
-// minus the finite-difference gradient of the stored potential (m_j/mbar) k_n phi(d).
+// minus the finite-difference gradient of the stored potential (m_j/mbar) k_n phi(d), edge
+// targets (whose potential moves with both end nodes) included.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -56,12 +57,19 @@ TEST(ContactPairForce, ForcesAndMomentsBalance) {
 TEST(ContactPairForce, TargetForceIsMinusGradientOfPotential) {
     const Model m = make_scene(true, false, 5);
     const State s0 = make_state(m, 1e-6);
-    int checked = 0;
+    int checked = 0, edge_pairs = 0;
     for (BodyId b = 1; b < m.num_bodies(); ++b) {
         const NodeId j = m.bodies[b].node_begin;  // the apex
         State s = s0;
         add_contact_forces(m, s);
         const Vec2 f = s.f_contact[j];
+        // edge targets (docs/theory.md §6.12) of the apex's two edges that touch: their force
+        // reaches the apex with weight 1/2, their energy moves with it (chain rule)
+        for (const ActiveContact& a : s.contact.active) {
+            if (a.node < m.contact.edge_target_base) continue;
+            const auto& e = m.contact.boundary_edges[a.node - m.contact.edge_target_base];
+            edge_pairs += (e[0] == j || e[1] == j) ? 1 : 0;
+        }
         auto energy = [&](Vec2 dx) {
             State t = s0;
             t.x[j] += dx;
@@ -79,6 +87,7 @@ TEST(ContactPairForce, TargetForceIsMinusGradientOfPotential) {
         ++checked;
     }
     EXPECT_EQ(checked, 6);
+    EXPECT_GT(edge_pairs, 0);  // the gradient check covers edge targets as well
 }
 
 }  // namespace
@@ -91,6 +100,7 @@ namespace {
 TEST(ContactDiagnostics, DeepPenetrationIsCounted) {
     testing::ModelBuilder b;
     b.m.contact.two_way = false;
+    b.m.contact.edge_targets = false;  // the apex node alone (its edges would touch at 1.5)
     b.add_body(make_rectangle_mesh(0, 0, 12, 3, 12, 3), true);  // layer: 1 deep
     const Vec2 p{6.3, 2.9};
     b.add_body(testing::mesh_of({p, p + Vec2{0.2, 1.2}, p + Vec2{-0.2, 1.2}}, {{0, 1, 2}}));

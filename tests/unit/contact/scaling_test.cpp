@@ -19,6 +19,7 @@ Model two_rectangles(ContactScaling s) {
     scenes::add_rectangle(m, 0.0, 0.0, 2.0, 0.2, 5, 1, 0, true, {}, false, "platform");
     m.contact.algorithm = ContactAlgorithm::Smooth;
     m.contact.scaling = s;
+    m.contact.edge_targets = false;  // the node scales of eqs. 19 / 6.16 themselves (§6.12: a third)
     finalize_model(m);
     return m;
 }

@@ -55,6 +55,62 @@ TEST(ContactTopology, TwoTriangleSquare) {
     expect_ccw(m);
 }
 
+// Edge targets (docs/theory.md §6.12, eq. 6.17) of the two-triangle unit square: corner masses
+// m/3 (nodes 1, 3: one triangle) and 2m/3 (nodes 0, 2), m = mbar = one triangle's mass, so node
+// scales 1/3 and 2/3 split half to each edge; nodes keep a third, midpoints get 2/3 of the sum.
+TEST(ContactTopology, EdgeTargetsSimpsonShares) {
+    for (bool on : {false, true}) {
+        ModelBuilder b;
+        b.m.contact.edge_targets = on;
+        b.add_body(make_rectangle_mesh(0, 0, 1, 1, 1, 1));
+        const Model& m = b.finalize();
+        const ContactModel& c = m.contact;
+        EXPECT_EQ(c.num_virtual(), 1);  // the chord midpoint only: edge targets are not nodes
+        EXPECT_EQ(c.edge_target_base, c.num_contact_nodes());
+        if (!on) {
+            EXPECT_EQ(c.num_edge_targets(), 0);
+            EXPECT_EQ(c.target_dt_factor, 1.0);
+            EXPECT_DOUBLE_EQ(c.node_scale[0], 2.0 / 3.0);
+            continue;
+        }
+        ASSERT_EQ(c.num_edge_targets(), 4);
+        EXPECT_DOUBLE_EQ(c.node_scale[0], 2.0 / 9.0);
+        EXPECT_DOUBLE_EQ(c.node_scale[1], 1.0 / 9.0);
+        Real total = 0;
+        for (NodeId i : c.boundary_nodes)
+            total += c.node_scale[i];
+        for (int32_t e = 0; e < c.num_edge_targets(); ++e) {
+            EXPECT_DOUBLE_EQ(c.edge_scale[e], 1.0 / 3.0) << "edge " << e;  // (2/3)(1/3 + 1/6)
+            total += c.edge_scale[e];
+            // the target sits at the edge midpoint and belongs to the body
+            const NodeId t = c.edge_target_base + e;
+            const Vec2 p = target_point(c, m.node_x0.data(), t);
+            const auto& be = c.boundary_edges[e];
+            EXPECT_EQ(p.x, 0.5 * (m.node_x0[be[0]].x + m.node_x0[be[1]].x));
+            EXPECT_EQ(p.y, 0.5 * (m.node_x0[be[0]].y + m.node_x0[be[1]].y));
+            EXPECT_EQ(target_node(c, t), be[0]);
+            EXPECT_EQ(target_scale(c, t), c.edge_scale[e]);
+        }
+        EXPECT_NEAR(total, 2.0, 1e-15);  // unchanged: 2 (1/3 + 2/3)
+        // row sum of node 1: 1/9 + 2 x (1/3) / 2 = 4/9 over its mass share 1/3
+        EXPECT_NEAR(c.target_dt_factor, 4.0 / 3.0, 1e-15);
+    }
+}
+
+// A long uniform face: interior face nodes keep the node-only target-side dt factor 1
+TEST(ContactTopology, EdgeTargetsUniformFaceKeepsScale) {
+    ModelBuilder b;
+    b.m.contact.scaling = ContactScaling::Length;
+    b.add_body(make_rectangle_mesh(0, 0, 4, 1, 8, 2));
+    const Model& m = b.finalize();
+    const ContactModel& c = m.contact;
+    // length scaling: Simpson's rule exactly, w_e = (2/3) l_e / lbar, nodes keep l_j / (6 lbar)
+    for (int32_t e = 0; e < c.num_edge_targets(); ++e)
+        EXPECT_NEAR(c.edge_scale[e], 2.0 / 3.0, 1e-14);
+    for (NodeId i : c.boundary_nodes)
+        EXPECT_NEAR(c.node_scale[i], 1.0 / 3.0, 1e-14);
+}
+
 TEST(ContactTopology, SingleTriangleIncenterFan) {
     // scalene triangle 3-4-5: inradius r = 2A / perimeter = 12 / 12 = 1, incenter (1, 1)
     ModelBuilder b;

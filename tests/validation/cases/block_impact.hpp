@@ -19,6 +19,8 @@ struct BlockImpactOptions {
     int samples = 600;         ///< rows of the KE(t) series
     /// Smooth (Lei et al. 2020) or a legacy potential (comparison, validation/cases/legacy_*.hpp)
     ContactAlgorithm algorithm = ContactAlgorithm::Smooth;
+    /// edge-midpoint targets (docs/theory.md §6.12); false = the paper's node-only targets
+    bool edge_targets = true;
 };
 
 struct BlockImpactResult {
@@ -56,6 +58,7 @@ inline Model make_block_impact(const BlockImpactOptions& o, const BlockBuilder& 
     m.contact.algorithm = o.algorithm;
     m.contact.params.penalty = o.penalty;
     m.contact.params.damping = o.damping;
+    m.contact.edge_targets = o.edge_targets;
     finalize_model(m);
     return m;
 }

@@ -180,7 +180,8 @@ inline double max_active_depth(const State& s) {
     return d;
 }
 
-/// Mean contact depth weighted by the target force scale (m_j / mbar or l_j / lbar, paper eq. 19):
+/// Mean contact depth weighted by the target force scale (m_j / mbar or l_j / lbar, paper eq. 19,
+/// shared with the edge targets by eq. 6.17):
 /// sum s_j d_j / sum s_j over the active pairs of the last step. On a flat face the normal force
 /// is sum s_j 2 k_n d_j (g = 2d, |grad d| = 1), so for a given load this mean scales exactly as
 /// 1/k_n as long as the same nodes touch.
@@ -188,7 +189,7 @@ inline double scaled_mean_depth(const Model& m, const State& s) {
     double sd = 0, ss = 0;
     for (const auto& a : s.contact.active) {
         if (a.h.d_prev <= 0) continue;
-        const double sc = m.contact.node_scale[static_cast<size_t>(a.node)];
+        const double sc = target_scale(m.contact, a.node);  // node or edge target (§6.12)
         sd += sc * a.h.d_prev;
         ss += sc;
     }
