@@ -54,7 +54,7 @@ add_test(NAME cli.energy_drift_exits_1
 add_test(NAME cli.penetration_exits_1
          COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=1
                  "-DARGS=run;${cli_dir}/penetration.toml;--out;${cli_out}/penetration;--quiet"
-                 "-DREGEX=step [0-9]+ \\(t = [0-9.e+-]+ s\\): contact: [0-9]+ target node\\(s\\) passed through the contact layer into the body they touched \\(deepest d / layer = [0-9.e+-]+\\); node [0-9]+ \\(body 0 .base., at \\([0-9.e+-]+, [0-9.e+-]+\\) m, d / layer = [0-9.e+-]+ when last in contact\\) is inside body 1 .block.; the contact force is lost there; reduce dt \\(now [0-9.e+-]+ s, stable limit [0-9.e+-]+ s\\) or increase the contact penalty"
+                 "-DREGEX=step [0-9]+ \\(t = [0-9.e+-]+ s\\): contact: [0-9]+ target node\\(s\\) passed through the contact layer into the body they touched \\(deepest d / layer = [0-9.e+-]+\\); (node [0-9]+|the midpoint of boundary edge [0-9]+-[0-9]+) \\(body 0 .base., at \\([0-9.e+-]+, [0-9.e+-]+\\) m, d / layer = [0-9.e+-]+ when last in contact\\) is inside body 1 .block.; the contact force is lost there; reduce dt \\(now [0-9.e+-]+ s, stable limit [0-9.e+-]+ s\\) or increase the contact penalty"
                  -P ${cli_dir}/expect_exit.cmake)
 set_tests_properties(cli.energy_drift_exits_1 cli.penetration_exits_1 PROPERTIES LABELS input)
 
@@ -86,3 +86,22 @@ add_test(NAME cli.batch_progress_and_bodies_csv
                  ${cli_out}/progress ${PROJECT_SOURCE_DIR}/docs/output.md)
 set_tests_properties(cli.batch_progress_and_bodies_csv PROPERTIES LABELS input
                      PASS_REGULAR_EXPRESSION "OK: batch progress")
+
+# ---- load-time contact geometry (issue #12 items 4 and 6, docs/theory.md §6.13-6.14) ----------
+add_test(NAME cli.initial_overlap_exits_2
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=2
+                 "-DARGS=check;${cli_dir}/initial_overlap.toml"
+                 "-DREGEX=initial_overlap.toml:12:1: error: bodies 0 \"first\" and 1 \"second\" overlap at t = 0: the centroid of boundary element [0-9]+ \\(node [0-9]+\\) of body 0 at \\([0-9.e+-]+, [0-9.e+-]+\\) m lies [0-9.e+-]+ m inside body 1 \\(touching counts up to [0-9.e+-]+ m = 1e-6 x the smallest element altitude\\); the contact penalty would push them apart at once with energy that is not in the balance. Move the meshes apart, or set \\[contact\\] initial_overlap = \"allow\" if the prestress is intended"
+                 -P ${cli_dir}/expect_exit.cmake)
+add_test(NAME cli.thin_contact_layer_warns
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=0
+                 "-DARGS=check;${cli_dir}/thin_base.toml"
+                 "-DREGEX=warning: body 0 \"base\" is too thin for its contact layer: in [0-9]+ boundary sub-triangle\\(s\\) an inner node takes its contact distance from the opposite face, e.g. node [0-9]+ of element [0-9]+: [0-9.e+-]+ m from boundary edge [0-9]+-[0-9]+ on the far side instead of [0-9.e+-]+ m from the face element [0-9]+ lies on; the contact normal there tilts towards the far face \\(docs/theory.md §6.13\\). Remedy: make the body thicker \\(at least three elements through its thickness\\) or refine the mesh there"
+                 -P ${cli_dir}/expect_exit.cmake)
+add_test(NAME cli.thin_contact_layer_warns_at_run
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=0
+                 "-DARGS=run;${cli_dir}/thin_base.toml;--out;${cli_out}/thin_base;--quiet"
+                 "-DREGEX=warning: body 0 \"base\" is too thin for its contact layer"
+                 -P ${cli_dir}/expect_exit.cmake)
+set_tests_properties(cli.initial_overlap_exits_2 cli.thin_contact_layer_warns
+  cli.thin_contact_layer_warns_at_run PROPERTIES LABELS input)

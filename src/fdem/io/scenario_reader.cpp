@@ -18,6 +18,7 @@
 #include "fdem/build.hpp"
 #include "fdem/error.hpp"
 #include "fdem/mesh.hpp"
+#include "contact/checks.hpp"
 #include "fdem/scenario.hpp"
 #include "contact/contact.hpp"
 #include "io/toml_fields.hpp"
@@ -179,6 +180,7 @@ public:
             }
             throw InputError({src_.name, 0, 0}, e.key(), e.message());
         }
+        check_contact_geometry(sc);
         choose_dt(sc);
         check_step_count(sc.run, end_time_loc_, "simulation.end_time",
                          src_.line(end_time_loc_.line));
@@ -1098,8 +1100,10 @@ private:
             sc.contact_default = true;
             return;
         }
-        std::vector<std::string> keys = {"algorithm", "buffer", "two_way",
-                                         "scaling",   "pair",   "composite_special_case"};
+        std::vector<std::string> keys = {"algorithm", "buffer",
+                                         "two_way",   "scaling",
+                                         "pair",      "composite_special_case",
+                                         "edge_targets", "initial_overlap"};
         keys.insert(keys.end(), kContactLawKeys.begin(), kContactLawKeys.end());
         Fields f(src_, *t, "[contact]", "contact", keys);
         ContactModel& c = m.contact;
@@ -1114,6 +1118,13 @@ private:
             c.buffer = f.real("buffer", std::nullopt, "m", Bounds::positive());
         }
         c.two_way = f.boolean("two_way", true);
+        // midpoints of the boundary edges as targets too (docs/theory.md §6.12)
+        c.edge_targets = f.boolean("edge_targets", true);
+        // bodies overlapping at t = 0: refused at load unless a prestress is intended (§6.14)
+        if (f.has("initial_overlap")) {
+            c.allow_initial_overlap =
+                f.choice("initial_overlap", std::nullopt, {"error", "allow"}) == "allow";
+        }
         // target force scale: paper eq. 19 (mass) or tributary length (docs/theory.md §6.11)
         if (f.has("scaling")) {
             c.scaling = f.choice("scaling", std::nullopt, {"mass", "length"}) == "mass"
@@ -1325,6 +1336,55 @@ private:
     SourceLocation interval_loc_;
     std::vector<KickEntry> kick_entries_;
     std::vector<BoundarySpeed> boundary_speeds_;
+
+    // load-time contact geometry (docs/theory.md §6.13-6.14): bodies overlapping at t = 0 are
+    // an error at the [[body]] entry of the body that lies inside the other (unless
+    // [contact] initial_overlap = "allow"); thin contact layers are a warning
+    void check_contact_geometry(Scenario& sc) {
+        const Model& m = sc.model;
+        if (m.contact.algorithm == ContactAlgorithm::None) return;
+        for (const ThinLayer& t : find_thin_layers(m)) {
+            // "file:line:column: warning: ..." at the body's [[body]] entry
+            const toml::table* e = bodies_[static_cast<size_t>(m.bodies[t.body].group)].table;
+            sc.warnings.push_back(fmt::format("{}:{}:{}: {}", src_.name,
+                                              e->source().begin.line, e->source().begin.column,
+                                              thin_layer_warning(m, t)));
+        }
+        if (m.contact.allow_initial_overlap) return;
+        const InitialOverlap o = find_initial_overlap(m);
+        if (!o.found) return;
+        const Body& a = m.bodies[o.body];
+        const Body& b = m.bodies[o.other];
+        const ContactModel& cm = m.contact;
+        std::string point;
+        switch (o.point) {
+            case InitialOverlap::Point::Node:
+                point = fmt::format("node {}", o.node);
+                break;
+            case InitialOverlap::Point::EdgeMidpoint:
+                point = fmt::format("the midpoint of boundary edge {}-{} (node {})",
+                                    cm.boundary_edges[static_cast<size_t>(o.edge)][0],
+                                    cm.boundary_edges[static_cast<size_t>(o.edge)][1], o.node);
+                break;
+            case InitialOverlap::Point::Centroid:
+                point = fmt::format("the centroid of boundary element {} (node {})", o.tri, o.node);
+                break;
+        }
+        const toml::table* entry = bodies_[static_cast<size_t>(a.group)].table;
+        const SourceLocation loc{src_.name, static_cast<int>(entry->source().begin.line),
+                                 static_cast<int>(entry->source().begin.column)};
+        throw InputError(
+            loc, "contact.initial_overlap",
+            fmt::format("bodies {} \"{}\" and {} \"{}\" overlap at t = 0: {} of body {} at "
+                        "({:.6g}, {:.6g}) m lies {:.3g} m inside body {} (touching counts up to "
+                        "{:.3g} m = 1e-6 x the smallest element altitude); the contact penalty "
+                        "would push them apart at once with energy that is not in the balance. "
+                        "Move the meshes apart, or set [contact] initial_overlap = \"allow\" if "
+                        "the prestress is intended",
+                        o.body, a.name, o.other, b.name, point, o.body, o.where.x, o.where.y,
+                        o.depth, o.other, o.tolerance),
+            src_.line(loc.line));
+    }
     std::vector<std::string> material_names_;
     std::vector<BodyEntry> bodies_;
     std::vector<LoadedMesh> meshes_;

@@ -1,0 +1,137 @@
+// Load-time contact geometry checks (contact/checks.cpp, docs/theory.md §6.13-6.14): bodies
+// overlapping at t = 0 beyond the touching tolerance, and contact layers whose inner nodes take
+// their distance from the opposite face (thin bodies).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "contact/checks.hpp"
+#include "unit/contact/contact_fixture.hpp"
+
+namespace fdem {
+namespace {
+
+using testing::ModelBuilder;
+
+// A = [0, 1] x [0, 1] and B = [1 + gap, 2 + gap] x [0, 1], 4 x 4 cells each: the faces meet
+// edge to edge in aligned rows (the geometry of docs/theory.md §6.12)
+Model two_squares(Real gap, Real dy = 0, bool fixed_a = false, bool fixed_b = false) {
+    ModelBuilder b;
+    b.add_body(make_rectangle_mesh(0, 0, 1, 1, 4, 4), fixed_a);
+    b.add_body(make_rectangle_mesh(1 + gap, dy, 1, 1, 4, 4), fixed_b);
+    return b.finalize();
+}
+
+TEST(InitialOverlap, ToleranceIsAMillionthOfTheSmallestAltitude) {
+    const Model m = two_squares(0.1);
+    const Real h_min = 0.25 / std::sqrt(2.0);  // right triangles of 0.25 x 0.25 cells
+    EXPECT_NEAR(m.contact.h_min, h_min, 1e-15);
+    const InitialOverlap o = find_initial_overlap(m);
+    EXPECT_FALSE(o.found);
+    EXPECT_NEAR(o.tolerance, 1e-6 * h_min, 1e-20);
+}
+
+// both sides of the tolerance: exactly touching and overlapping by half of it are accepted,
+// twice of it is an overlap (the nodes inside the other face, not the corners on its edge lines)
+TEST(InitialOverlap, TouchingIsAcceptedBothSidesOfTheTolerance) {
+    const Real tol = 1e-6 * 0.25 / std::sqrt(2.0);
+    EXPECT_FALSE(find_initial_overlap(two_squares(0.0)).found);
+    EXPECT_FALSE(find_initial_overlap(two_squares(-0.5 * tol)).found);
+    const Model m = two_squares(-2 * tol);
+    const InitialOverlap o = find_initial_overlap(m);
+    ASSERT_TRUE(o.found);
+    EXPECT_NEAR(o.depth, 2 * tol, 1e-3 * tol);
+    // the first point at the deepest depth, in (body pair, body, point) order: a boundary node
+    // of A on its right face (inside B)
+    EXPECT_EQ(o.body, 0);
+    EXPECT_EQ(o.other, 1);
+    EXPECT_EQ(o.point, InitialOverlap::Point::Node);
+    EXPECT_NEAR(o.where.x, 1.0, 1e-15);
+    EXPECT_GT(o.where.y, 0.0);
+    EXPECT_LT(o.where.y, 1.0);
+}
+
+// coincident meshes (two meshes occupying the same region): every boundary point lies on the
+// other's boundary (depth 0), the centroids of the boundary elements are deep inside
+TEST(InitialOverlap, CoincidentMeshesAreFoundByCentroids) {
+    ModelBuilder b;
+    b.add_body(make_rectangle_mesh(0, 0, 1, 1, 4, 4));
+    b.add_body(make_rectangle_mesh(0, 0, 1, 1, 4, 4));
+    const Model& m = b.finalize();
+    const InitialOverlap o = find_initial_overlap(m);
+    ASSERT_TRUE(o.found);
+    EXPECT_EQ(o.point, InitialOverlap::Point::Centroid);
+    EXPECT_EQ(o.body, 0);
+    EXPECT_EQ(o.other, 1);
+    EXPECT_GT(o.depth, 0.1);  // a centroid one cell in: 1/4 + 1/12 from the faces
+}
+
+// a body deep inside another (no boundary point of either in the other's contact layer)
+TEST(InitialOverlap, BodyInsideAnotherIsFound) {
+    ModelBuilder b;
+    b.add_body(make_rectangle_mesh(0, 0, 10, 10, 10, 10));
+    b.add_body(make_rectangle_mesh(4.2, 4.2, 1, 1, 2, 2));
+    const Model& m = b.finalize();
+    const InitialOverlap o = find_initial_overlap(m);
+    ASSERT_TRUE(o.found);
+    EXPECT_EQ(o.body, 1);
+    EXPECT_EQ(o.other, 0);
+    EXPECT_GT(o.depth, 4.0);
+}
+
+// two fixed bodies never interact: their overlap is not reported
+TEST(InitialOverlap, TwoFixedBodiesAreNotCompared) {
+    EXPECT_FALSE(find_initial_overlap(two_squares(-0.3, 0, true, true)).found);
+    EXPECT_TRUE(find_initial_overlap(two_squares(-0.3, 0, true, false)).found);
+}
+
+// A slab two elements thick with perturbed middle nodes: in a top-layer element a middle node
+// nearer to the bottom face takes its distance from there (eq. 6.3 keeps the smaller height).
+TEST(ThinLayer, TwoElementSlabIsReported) {
+    MeshData mesh = make_rectangle_mesh(0, 0, 2, 0.2, 20, 2);
+    testing::perturb_interior(mesh, 0.03, 7);
+    ModelBuilder b;
+    b.add_body(mesh);
+    const Model& m = b.finalize();
+    const std::vector<ThinLayer> t = find_thin_layers(m);
+    ASSERT_EQ(t.size(), 1u);
+    EXPECT_EQ(t[0].body, 0);
+    EXPECT_GT(t[0].count, 0);
+    EXPECT_LT(t[0].dist, kThinLayerRatio * t[0].near_dist);
+    // the far face: its outward normal is opposite to the face the element lies on
+    EXPECT_EQ(thin_layer_warning(m, t[0]).rfind("warning: body 0 \"b0\" is too thin for its "
+                                                "contact layer: in ",
+                                                0),
+              0u);
+    EXPECT_NE(thin_layer_warning(m, t[0]).find("Remedy: make the body thicker (at least three "
+                                               "elements through its thickness) or refine the "
+                                               "mesh there"),
+              std::string::npos);
+}
+
+// the same slab structured (middle nodes equidistant: a tie tilts nothing), four elements thick
+// (perturbed), and a block with 90-degree corners are not reported
+TEST(ThinLayer, ThickOrSymmetricBodiesAreNotReported) {
+    {
+        ModelBuilder b;
+        b.add_body(make_rectangle_mesh(0, 0, 2, 0.2, 20, 2));
+        EXPECT_TRUE(find_thin_layers(b.finalize()).empty());
+    }
+    {
+        MeshData mesh = make_rectangle_mesh(0, 0, 2, 0.4, 20, 4);
+        testing::perturb_interior(mesh, 0.03, 7);
+        ModelBuilder b;
+        b.add_body(mesh);
+        EXPECT_TRUE(find_thin_layers(b.finalize()).empty());
+    }
+    {
+        MeshData mesh = make_rectangle_mesh(0, 0, 1, 1, 6, 6);
+        testing::perturb_interior(mesh, 0.03, 3);
+        ModelBuilder b;
+        b.add_body(mesh);
+        EXPECT_TRUE(find_thin_layers(b.finalize()).empty());
+    }
+}
+
+}  // namespace
+}  // namespace fdem
