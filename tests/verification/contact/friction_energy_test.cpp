@@ -30,6 +30,11 @@ Model sliding_block(Real damping = 0) {
     m.contact.algorithm = ContactAlgorithm::Smooth;
     m.contact.params.friction = 0.5;
     m.contact.params.damping = damping;
+    // node-only targets (the numbers above): with the edge targets of docs/theory.md §6.12 the
+    // undamped balance errors are 2.7e-3, 5.2e-4, 1.6e-4 (ratios 5.1, 3.4), but the block's
+    // rocking on its undamped contact springs leaves 4.8 % / 2.9 % of KE_0 at t = 0.15 s at the
+    // first two steps, above the 1 % "at rest" check
+    m.contact.edge_targets = false;
     finalize_model(m);
     return m;
 }
