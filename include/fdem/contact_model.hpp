@@ -104,7 +104,7 @@ struct ContactModel {
     /// baseline B always uses the Split layout, see docs/theory.md §6.1.1)
     CompositeSpecialCase composite_special_case = CompositeSpecialCase::Fan;
     /// Targets at the midpoints of the boundary edges besides the boundary nodes, carrying 2/3
-    /// of the nodes' force scale (docs/theory.md §6.12, eq. 6.17; smooth contact only): without
+    /// of the nodes' force scale (docs/theory.md §6.12, eq. 6.19; smooth contact only): without
     /// them two faces meeting corner to corner in exactly aligned rows never touch
     bool edge_targets = true;
     /// Bodies overlapping at t = 0 (deeper than 1e-6 h_min): false = an input error at load
@@ -133,7 +133,7 @@ struct ContactModel {
 
     /// Edge targets (docs/theory.md §6.12): target id edge_target_base + e is the midpoint of
     /// boundary_edges[e], its force goes half to each end node and edge_scale[e] is its force
-    /// scale (eq. 6.17); then node_scale holds the share the boundary nodes keep. edge_scale is
+    /// scale (eq. 6.19); then node_scale holds the share the boundary nodes keep. edge_scale is
     /// empty without edge targets. Target ids: [0, num_real_nodes) boundary nodes, then
     /// [edge_target_base, target_end()) edge midpoints (edge_target_base = num_contact_nodes()).
     NodeId edge_target_base = 0;
@@ -216,7 +216,7 @@ inline Vec2 target_point(const ContactModel& cm, const Vec2* x, NodeId t) {
 }
 
 /// Force scale of target t: m_j / mbar (eq. 19) or l_j / lbar, with edge targets the node's
-/// share of it, or edge_scale of an edge target (eq. 6.17).
+/// share of it, or edge_scale of an edge target (eq. 6.19).
 inline Real target_scale(const ContactModel& cm, NodeId t) {
     if (t < cm.num_real_nodes) return cm.node_scale[static_cast<size_t>(t)];
     return cm.edge_scale[static_cast<size_t>(t - cm.edge_target_base)];

@@ -351,7 +351,7 @@ namespace {
     // the law (eqs. 5-19) with v_r = v_c - v_j, v_c = sum N_i v_i (eq. 13)
     const BodyId bt = m.node_body[target_node(cm, j)];
     const ContactParams& p = pair_parameters(cm, m.bodies[c].material, m.bodies[bt].material);
-    const Real scale = target_scale(cm, j);  // m_j / mbar (eq. 19), l_j / lbar, or eq. 6.17
+    const Real scale = target_scale(cm, j);  // m_j / mbar (eq. 19), l_j / lbar, or eq. 6.19
     Vec2 vc;
     for (int k = 0; k < 3; ++k)
         vc += fs.N[k] * cpos(cm, v, vv, q[k]);

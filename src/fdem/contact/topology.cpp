@@ -455,7 +455,7 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
 // The force scale s_j of each boundary node (eq. 19 or 6.16) is shared out as the weights of
 // the three-point Gauss-Lobatto (Simpson) rule on each of its edges: node j's part on edge e is
 // sigma_je = s_j l_e / L_j (L_j = the lengths of its boundary edges); the node keeps 1/3 of
-// every part and the midpoint of e gets 2/3 (sigma_ae + sigma_be) (eq. 6.17), so the total scale
+// every part and the midpoint of e gets 2/3 (sigma_ae + sigma_be) (eq. 6.19), so the total scale
 // of a body is unchanged. With length scaling this is Simpson's rule on every edge exactly.
 // target_dt_factor: the target stiffness is no longer diagonal (a midpoint moves with both end
 // nodes); its largest row sum per node mass bounds the target-side term of eq. 6.15 (Gershgorin).

@@ -55,7 +55,7 @@ TEST(ContactTopology, TwoTriangleSquare) {
     expect_ccw(m);
 }
 
-// Edge targets (docs/theory.md §6.12, eq. 6.17) of the two-triangle unit square: corner masses
+// Edge targets (docs/theory.md §6.12, eq. 6.19) of the two-triangle unit square: corner masses
 // m/3 (nodes 1, 3: one triangle) and 2m/3 (nodes 0, 2), m = mbar = one triangle's mass, so node
 // scales 1/3 and 2/3 split half to each edge; nodes keep a third, midpoints get 2/3 of the sum.
 TEST(ContactTopology, EdgeTargetsSimpsonShares) {

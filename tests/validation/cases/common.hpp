@@ -181,7 +181,7 @@ inline double max_active_depth(const State& s) {
 }
 
 /// Mean contact depth weighted by the target force scale (m_j / mbar or l_j / lbar, paper eq. 19,
-/// shared with the edge targets by eq. 6.17):
+/// shared with the edge targets by eq. 6.19):
 /// sum s_j d_j / sum s_j over the active pairs of the last step. On a flat face the normal force
 /// is sum s_j 2 k_n d_j (g = 2d, |grad d| = 1), so for a given load this mean scales exactly as
 /// 1/k_n as long as the same nodes touch.
