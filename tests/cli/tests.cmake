@@ -103,5 +103,14 @@ add_test(NAME cli.thin_contact_layer_warns_at_run
                  "-DARGS=run;${cli_dir}/thin_base.toml;--out;${cli_out}/thin_base;--quiet"
                  "-DREGEX=warning: body 0 \"base\" is too thin for its contact layer"
                  -P ${cli_dir}/expect_exit.cmake)
+# example 04: 2 500 grains from 8 [[body]] entries with pieces = "separate", hundreds of them thin:
+# one warning per entry (its worst grain, the others counted), not one per grain
+add_test(NAME cli.thin_contact_layer_one_warning_per_entry
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=0
+                 "-DARGS=check;${PROJECT_SOURCE_DIR}/examples/04_particles/scenario.toml"
+                 "-DREGEX=scenario.toml:31:1: warning: body [0-9]+ \"p0\" is too thin for its contact layer: .* \\([0-9]+ other bodies of this \\[\\[body\\]\\] entry are thin too\\)"
+                 "-DCOUNT_REGEX=is too thin for its contact layer" -DCOUNT=8
+                 -P ${cli_dir}/expect_exit.cmake)
 set_tests_properties(cli.initial_overlap_exits_2 cli.thin_contact_layer_warns
-  cli.thin_contact_layer_warns_at_run PROPERTIES LABELS input)
+  cli.thin_contact_layer_warns_at_run cli.thin_contact_layer_one_warning_per_entry
+  PROPERTIES LABELS input)

@@ -1343,12 +1343,31 @@ private:
     void check_contact_geometry(Scenario& sc) {
         const Model& m = sc.model;
         if (m.contact.algorithm == ContactAlgorithm::None) return;
-        for (const ThinLayer& t : find_thin_layers(m)) {
+        // one warning per [[body]] entry (an entry with pieces = "separate" can make thousands of
+        // bodies): its worst body (largest near_dist / dist), and how many others share the issue
+        const std::vector<ThinLayer> thin = find_thin_layers(m);
+        std::vector<size_t> worst(bodies_.size(), thin.size());
+        std::vector<int32_t> affected(bodies_.size(), 0);
+        for (size_t k = 0; k < thin.size(); ++k) {
+            const auto g = static_cast<size_t>(m.bodies[thin[k].body].group);
+            ++affected[g];
+            if (worst[g] == thin.size() || thin[k].near_dist / thin[k].dist >
+                                               thin[worst[g]].near_dist / thin[worst[g]].dist) {
+                worst[g] = k;
+            }
+        }
+        for (size_t g = 0; g < bodies_.size(); ++g) {
+            if (worst[g] == thin.size()) continue;
             // "file:line:column: warning: ..." at the body's [[body]] entry
-            const toml::table* e = bodies_[static_cast<size_t>(m.bodies[t.body].group)].table;
-            sc.warnings.push_back(fmt::format("{}:{}:{}: {}", src_.name,
+            const toml::table* e = bodies_[g].table;
+            std::string more;
+            if (affected[g] > 1) {
+                more = fmt::format(" ({} other bodies of this [[body]] entry are thin too)",
+                                   affected[g] - 1);
+            }
+            sc.warnings.push_back(fmt::format("{}:{}:{}: {}{}", src_.name,
                                               e->source().begin.line, e->source().begin.column,
-                                              thin_layer_warning(m, t)));
+                                              thin_layer_warning(m, thin[worst[g]]), more));
         }
         if (m.contact.allow_initial_overlap) return;
         const InitialOverlap o = find_initial_overlap(m);
