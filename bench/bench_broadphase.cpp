@@ -16,10 +16,12 @@ void run_broad_phase(benchmark::State& st, BroadKernel kernel) {
     const Model& m = bench::cached_pack(st.range(0), false);
     State s = make_state(m, 0.5 * stable_time_step(m));
     update_virtual_nodes(m, s);
-    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact, kernel);  // warm-up: sizes
+    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad,
+                    kernel);  // warm-up: sizes
     for (auto _ : st) {
         update_virtual_nodes(m, s);
-        find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact, kernel);
+        find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad,
+                        kernel);
     }
     st.SetItemsProcessed(st.iterations() * m.num_tris());
     st.counters["omp_threads"] = 1;
@@ -27,7 +29,7 @@ void run_broad_phase(benchmark::State& st, BroadKernel kernel) {
         benchmark::Counter(static_cast<double>(st.iterations()) * m.num_tris(),
                            benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
     st.counters["sub_tris"] = m.contact.num_sub_tris();
-    st.counters["pairs"] = static_cast<double>(s.contact.cand_node.size());
+    st.counters["pairs"] = static_cast<double>(s.contact.cand.node.size());
 }
 
 // the default path (AVX-512 node loop where the CPU has it)

@@ -31,18 +31,18 @@ void BM_NarrowPhase(benchmark::State& st) {
         s.contact.skin_used = 0;
         add_contact_forces(m, s);
     }
-    const double pairs = static_cast<double>(s.contact.cand_node.size());
+    const double pairs = static_cast<double>(s.contact.cand.node.size());
     st.SetItemsProcessed(st.iterations() * static_cast<int64_t>(pairs));
     st.counters["omp_threads"] = static_cast<double>(st.range(2));
     st.counters["pairs"] = pairs;
-    st.counters["tris_per_pair"] = static_cast<double>(s.contact.cand_tri.size()) / pairs;
+    st.counters["tris_per_pair"] = static_cast<double>(s.contact.cand.tri.size()) / pairs;
     st.counters["active"] = s.contact.active_contacts;
     // pairs that pass the body-box reject (contact.cpp body_boxes()) and run the locate test
     int64_t survivors = 0;
-    for (size_t p = 0; p < s.contact.cand_node.size(); ++p) {
+    for (size_t p = 0; p < s.contact.cand.node.size(); ++p) {
         survivors +=
-            !box_rejects(s.contact.body_box[s.contact.cand_body[p]],
-                        target_point(m.contact, s.x.data(), s.contact.cand_node[p]));
+            !box_rejects(s.contact.body_box[s.contact.cand.body[p]],
+                        target_point(m.contact, s.x.data(), s.contact.cand.node[p]));
     }
     st.counters["box_pass"] = static_cast<double>(survivors) / pairs;
     st.counters["sub_tris"] = m.contact.num_sub_tris();

@@ -46,7 +46,7 @@ inline PhaseTimes time_phases(const Model& m, const State& s, int reps) {
         if (m.contact.algorithm == ContactAlgorithm::None) continue;
         t0 = clock::now();
         update_virtual_nodes(m, c);
-        find_candidates(m, c.x.data(), c.contact.xv.data(), c.contact);
+        find_candidates(m, c.x.data(), c.contact.xv.data(), c.contact.cand, c.contact.broad);
         t1 = clock::now();
         best_b = std::min(best_b, secs(t0, t1));
         c.contact.need_rebuild = false;
@@ -60,8 +60,8 @@ inline PhaseTimes time_phases(const Model& m, const State& s, int reps) {
     p.element = best_e;
     p.broad = m.contact.algorithm == ContactAlgorithm::None ? 0 : best_b;
     p.narrow = m.contact.algorithm == ContactAlgorithm::None ? 0 : best_n;
-    p.pairs = static_cast<int64_t>(c.contact.cand_node.size());
-    p.cand_tris = static_cast<int64_t>(c.contact.cand_tri.size());
+    p.pairs = static_cast<int64_t>(c.contact.cand.node.size());
+    p.cand_tris = static_cast<int64_t>(c.contact.cand.tri.size());
     return p;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "fdem/candidates.hpp"
 #include "fdem/math.hpp"
 
 namespace fdem {
@@ -98,30 +99,15 @@ struct ContactState {
     int64_t total_lost_inside = 0;
     Real max_depth_ratio_ever = 0;
 
-    // ---- broad phase (detect/broad_phase.hpp) -------------------------------------------
+    // ---- broad phase (detect/broad_phase.hpp): when to run it, and its output --
     int64_t rebuilds = 0;  ///< number of broad-phase runs
     Real skin_used = 0;    ///< accumulated 2 dt max|v| since the last rebuild [m]
     bool need_rebuild = true;
-    /// Candidate pairs (target node, contactor body), sorted by (node, body); the candidate
-    /// sub-triangles of pair p are cand_tri[cand_begin[p] .. cand_begin[p+1]), ascending.
-    std::vector<NodeId> cand_node;
-    std::vector<BodyId> cand_body;
-    std::vector<int32_t> cand_begin;
-    std::vector<int32_t> cand_tri;
-
-    // ---- broad-phase grid scratch ----------------------------------------------------
-    /// sub-triangle centroid at the last rebuild [m]; find_candidates() leaves it in cell
-    /// order (k-th entry: sub-triangle cell_items[k]), the brute force in sub-triangle order
-    std::vector<Vec2> tri_center;
-    /// bounding-circle radius about the centroid [m], ordered like tri_center
-    std::vector<Real> tri_radius;
-    std::vector<int32_t> tri_cell;  ///< grid cell of each sub-triangle
-    std::vector<int32_t> cell_start;
-    std::vector<int32_t> cell_items;
-    /// scratch: per-node list of the broad phase, then the narrow phase's list of the candidate
-    /// pairs in contact (ascending within each of its fixed chunks of pairs; pair_out[p] is
-    /// written only for those pairs)
-    std::vector<int32_t> query;
+    Candidates cand;          ///< written by the broad phase, read by the narrow phase
+    BroadPhaseScratch broad;  ///< the broad phase's grid scratch
+    /// scratch of the narrow phase: the candidate pairs in contact (ascending within each of
+    /// its fixed chunks of pairs; pair_out[p] is written only for those pairs)
+    std::vector<int32_t> in_contact;
 
     // ---- pair history: ping-pong buffers, both sorted by (node, body) ----------------
     std::vector<ActiveContact> active;

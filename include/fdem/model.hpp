@@ -11,25 +11,10 @@
 #include <vector>
 
 #include "fdem/contact_model.hpp"
+#include "fdem/material.hpp"
 #include "fdem/math.hpp"
 
 namespace fdem {
-
-enum class PlaneMode { Strain, Stress };
-
-/// Isotropic hyperelastic material (docs/theory.md §2, spec §3.1). SI units.
-struct Material {
-    std::string name;
-    Real density = 0;         ///< rho [kg/m^3], > 0
-    Real youngs_modulus = 0;  ///< E [Pa], > 0
-    Real poisson_ratio = 0;   ///< nu [-], in [0, 0.5)
-    PlaneMode plane = PlaneMode::Strain;
-    Real viscosity = 0;      ///< eta [Pa s] of the viscous stress eta*D (theory §2.3), >= 0
-    Real damping_ratio = 0;  ///< xi [-]: adds eta = 2 h xi sqrt(E rho) per element (theory §2.3)
-    // derived at build time (theory eq. 2.5): effective 2-D Lame constants
-    Real lambda = 0;  ///< [Pa]; for plane stress the reduced 2 lambda mu / (lambda + 2 mu)
-    Real mu = 0;      ///< shear modulus [Pa]
-};
 
 /// Finite-element formulation of a body's triangles (docs/theory.md §3; spec §3.3).
 enum class ElementKind : uint8_t {

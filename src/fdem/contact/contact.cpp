@@ -33,7 +33,7 @@ constexpr Real kRejectMargin = 1e-9;
 // parallel region costs about as much as a few thousand pair evaluations)
 constexpr int32_t kMinParallelPairs = 2048;
 // the narrow phase splits the pairs into this many fixed chunks (independent of the thread
-// count); each chunk lists its pairs in contact at the front of its range of cs.query
+// count); each chunk lists its pairs in contact at the front of its range of cs.in_contact
 constexpr int32_t kPairChunks = 64;
 constexpr int32_t kBoxPrefetch = 24;  // pairs ahead whose body box pass 1 prefetches
 
@@ -122,18 +122,19 @@ void init_contact_state(const Model& m, State& s) {
     cs.xv.assign(nv, Vec2{});
     cs.vv.assign(nv, Vec2{});
     // reservations: the grow-only buffers rarely need more than this after warm-up
-    cs.cand_node.reserve(4 * nb + 16);
-    cs.cand_body.reserve(4 * nb + 16);
-    cs.cand_begin.reserve(4 * nb + 17);
-    cs.cand_tri.reserve(16 * nb + 64);
+    cs.cand.node.reserve(4 * nb + 16);
+    cs.cand.body.reserve(4 * nb + 16);
+    cs.cand.begin.reserve(4 * nb + 17);
+    cs.cand.tri.reserve(16 * nb + 64);
     cs.pair_out.reserve(4 * nb + 16);
     cs.body_box.assign(static_cast<size_t>(m.num_bodies()), BodyBox{});
-    cs.tri_center.reserve(nt);
-    cs.tri_radius.reserve(nt);
-    cs.tri_cell.reserve(nt);
-    cs.cell_items.reserve(nt);
-    cs.cell_start.reserve(4 * nt + 64);
-    cs.query.reserve(4 * nt + 64);
+    cs.broad.tri_center.reserve(nt);
+    cs.broad.tri_radius.reserve(nt);
+    cs.broad.tri_cell.reserve(nt);
+    cs.broad.cell_items.reserve(nt);
+    cs.broad.cell_start.reserve(4 * nt + 64);
+    cs.broad.query.reserve(4 * nt + 64);
+    cs.in_contact.reserve(4 * nb + 16);
     cs.active.reserve(2 * nb + 16);
     cs.active_next.reserve(2 * nb + 16);
 }
@@ -384,7 +385,7 @@ namespace {
 int32_t evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const Vec2* v,
                       const Vec2* xv, const Vec2* vv, Real dt, int32_t pr, PairResult& out) {
     const ContactModel& cm = m.contact;
-    const NodeId j = cs.cand_node[pr];
+    const NodeId j = cs.cand.node[pr];
 
     // locate x_j: the candidate sub-triangle with the largest min N_i >= -eps
     const Vec2 xj = target_point(cm, x, j);
@@ -392,8 +393,8 @@ int32_t evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, con
     Real best_min = -kLocateEps;
     Real bN[3];
     Vec2 pb[3];
-    for (int32_t k = cs.cand_begin[pr]; k < cs.cand_begin[pr + 1]; ++k) {
-        const auto& q = cm.sub_tri[cs.cand_tri[k]];
+    for (int32_t k = cs.cand.begin[pr]; k < cs.cand.begin[pr + 1]; ++k) {
+        const auto& q = cm.sub_tri[cs.cand.tri[k]];
         const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
         // N_i = c_i * (1 / a2) with |rounding| < 1e-15 relative, so any c_i beyond
         // kRejectMargin |a2| on the outer side gives N_i < -kLocateEps: rejected either way
@@ -408,7 +409,7 @@ int32_t evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, con
         const Real mn = std::min({N[0], N[1], N[2]});
         if (mn >= best_min) {
             best_min = mn;
-            best = cs.cand_tri[k];
+            best = cs.cand.tri[k];
             bN[0] = N[0];
             bN[1] = N[1];
             bN[2] = N[2];
@@ -418,7 +419,7 @@ int32_t evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, con
         }
     }
     if (best < 0) return -1;
-    return contact_at(m, cs, v, vv, dt, j, cs.cand_body[pr], best, bN, pb, out);
+    return contact_at(m, cs, v, vv, dt, j, cs.cand.body[pr], best, bN, pb, out);
 }
 
 }  // namespace
@@ -471,7 +472,7 @@ void add_contact_forces(const Model& m, State& s) {
         if (cs.skin_used > cm.buffer) cs.need_rebuild = true;
     }
     if (cs.need_rebuild) {
-        find_candidates(m, x, xv, cs);
+        find_candidates(m, x, xv, cs.cand, cs.broad);
         cs.need_rebuild = false;
         cs.skin_used = 0;
         ++cs.rebuilds;
@@ -480,9 +481,9 @@ void add_contact_forces(const Model& m, State& s) {
     // 3a. narrow phase and law of every pair, independent of each other: in parallel into the
     //     per-pair buffer pair_out (written only for pairs in contact); each of the kPairChunks
     //     fixed chunks of pairs lists its pairs in contact, ascending, at the front of its range
-    //     of cs.query. The body box rejects most pairs before any sub-triangle is touched
+    //     of cs.in_contact. The body box rejects most pairs before any sub-triangle is touched
     //     (exact: body_boxes()). Below kMinParallelPairs fork/join dominates.
-    const int32_t npairs = static_cast<int32_t>(cs.cand_node.size());
+    const int32_t npairs = static_cast<int32_t>(cs.cand.node.size());
     auto before = [](const ActiveContact& a, NodeId j, BodyId c) {
         return a.node < j || (a.node == j && a.body < c);
     };
@@ -492,17 +493,17 @@ void add_contact_forces(const Model& m, State& s) {
         std::fill(cs.body_box.begin(), cs.body_box.end(), BodyBox{{-inf, -inf}, {inf, inf}});
     }
     cs.pair_out.resize(static_cast<size_t>(npairs));
-    cs.query.resize(static_cast<size_t>(npairs));
+    cs.in_contact.resize(static_cast<size_t>(npairs));
     PairResult* out = cs.pair_out.data();
-    int32_t* in_contact = cs.query.data();
+    int32_t* in_contact = cs.in_contact.data();
     int32_t chunk_count[kPairChunks];
     auto chunk_begin = [npairs](int32_t ch) {
         return static_cast<int32_t>(static_cast<int64_t>(npairs) * ch / kPairChunks);
     };
     {
         const ContactState& ccs = cs;
-        const NodeId* cand_node = cs.cand_node.data();
-        const BodyId* cand_body = cs.cand_body.data();
+        const NodeId* cand_node = cs.cand.node.data();
+        const BodyId* cand_body = cs.cand.body.data();
         BodyBox* box = cs.body_box.data();
         const bool boxes = cs.box_reject;
         const int32_t nbodies = m.num_bodies();
@@ -567,8 +568,8 @@ void add_contact_forces(const Model& m, State& s) {
         const int32_t b = chunk_begin(ch);
         for (int32_t k = b; k < b + chunk_count[ch]; ++k) {
             const int32_t pr = in_contact[k];
-            const NodeId j = cs.cand_node[pr];
-            const BodyId c = cs.cand_body[pr];
+            const NodeId j = cs.cand.node[pr];
+            const BodyId c = cs.cand.body[pr];
             while (ia < cs.active.size() && before(cs.active[ia], j, c))
                 release(cs.active[ia++]);
             if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) ++ia;

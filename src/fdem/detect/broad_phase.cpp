@@ -21,16 +21,14 @@ inline Vec2 cpos(const ContactModel& cm, const Vec2* x, const Vec2* xv, NodeId i
 
 // bounding circles of the contactor sub-triangles at the current positions; returns the largest
 // radius
-Real bounding_circles(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs) {
+Real bounding_circles(const Model& m, const Vec2* x, const Vec2* xv, BroadPhaseScratch& g) {
     const ContactModel& cm = m.contact;
     const int32_t nt = cm.num_sub_tris();
     // grow-only: find_candidates keeps cell-ordered copies behind the first nt entries
-    if (cs.tri_center.size() < static_cast<size_t>(nt))
-        cs.tri_center.resize(static_cast<size_t>(nt));
-    if (cs.tri_radius.size() < static_cast<size_t>(nt))
-        cs.tri_radius.resize(static_cast<size_t>(nt));
-    Vec2* __restrict center = cs.tri_center.data();
-    Real* __restrict radius = cs.tri_radius.data();
+    if (g.tri_center.size() < static_cast<size_t>(nt)) g.tri_center.resize(static_cast<size_t>(nt));
+    if (g.tri_radius.size() < static_cast<size_t>(nt)) g.tri_radius.resize(static_cast<size_t>(nt));
+    Vec2* __restrict center = g.tri_center.data();
+    Real* __restrict radius = g.tri_radius.data();
     const std::array<NodeId, 3>* sub = cm.sub_tri.data();
     Real r_max = 0;
     for (int32_t t = 0; t < nt; ++t) {
@@ -45,11 +43,11 @@ Real bounding_circles(const Model& m, const Vec2* x, const Vec2* xv, ContactStat
     return r_max;
 }
 
-void clear_candidates(ContactState& cs) {
-    cs.cand_node.clear();
-    cs.cand_body.clear();
-    cs.cand_begin.clear();
-    cs.cand_tri.clear();
+void clear_candidates(Candidates& out) {
+    out.node.clear();
+    out.body.clear();
+    out.begin.clear();
+    out.tri.clear();
 }
 
 }  // namespace
@@ -63,40 +61,40 @@ void clear_candidates(ContactState& cs) {
 // rule is_contactor_for there (a comparison of keys, detail::RoleTest), so the node's own body
 // never reaches the hit list; the hits are put in ascending id order (= body order) and emitted
 // branch-free. Output order = (node ascending, tri ascending) as before, independent of the grid.
-void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs,
-                     BroadKernel kernel) {
+void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, Candidates& out,
+                     BroadPhaseScratch& g, BroadKernel kernel) {
     const ContactModel& cm = m.contact;
     const Real b = cm.buffer;
     const int32_t nt = cm.num_sub_tris();
     if (nt == 0) {
-        clear_candidates(cs);
-        cs.cand_begin.push_back(0);
+        clear_candidates(out);
+        out.begin.push_back(0);
         return;
     }
     if (m.num_bodies() >= detail::kFixedKey)
         throw std::length_error("find_candidates: too many bodies");
-    const Real r_max = bounding_circles(m, x, xv, cs);
+    const Real r_max = bounding_circles(m, x, xv, g);
 
     // grid over the centroids (detect/grid.hpp); cell >= r_max + b, so every accepted centroid
-    // lies in the 3x3 block around the node's cell. cs.query is the fill cursor here, then the
+    // lies in the 3x3 block around the node's cell. g.query is the fill cursor here, then the
     // hit list of one node (at most nt + slack)
-    const GridDims g = build_grid(cs.tri_center.data(), nt, r_max + b, cs.tri_cell, cs.cell_start,
-                                  cs.cell_items, cs.query);
-    const Vec2 lo = g.lo;
-    const int32_t nx = g.nx, ny = g.ny;
-    const Real inv = g.inv;
+    const GridDims gd = build_grid(g.tri_center.data(), nt, r_max + b, g.tri_cell, g.cell_start,
+                                   g.cell_items, g.query);
+    const Vec2 lo = gd.lo;
+    const int32_t nx = gd.nx, ny = gd.ny;
+    const Real inv = gd.inv;
     const size_t n = static_cast<size_t>(nt);
-    cs.query.resize(std::max(cs.query.size(), n + detail::kScanSlack));
+    g.query.resize(std::max(g.query.size(), n + detail::kScanSlack));
     // cell-ordered x, y and (r + b)^2 behind the id-ordered radii (grow-only scratch); the
     // grid's cell per item (tri_cell) is not needed any more and takes the role keys
-    if (cs.tri_radius.size() < 4 * n) cs.tri_radius.resize(4 * n);
-    const Vec2* __restrict center_id = cs.tri_center.data();
-    const Real* __restrict radius_id = cs.tri_radius.data();
-    Real* __restrict cx = cs.tri_radius.data() + n;
+    if (g.tri_radius.size() < 4 * n) g.tri_radius.resize(4 * n);
+    const Vec2* __restrict center_id = g.tri_center.data();
+    const Real* __restrict radius_id = g.tri_radius.data();
+    Real* __restrict cx = g.tri_radius.data() + n;
     Real* __restrict cy = cx + n;
     Real* __restrict reach2 = cy + n;
-    int32_t* __restrict key = cs.tri_cell.data();
-    const int32_t* __restrict items = cs.cell_items.data();
+    int32_t* __restrict key = g.tri_cell.data();
+    const int32_t* __restrict items = g.cell_items.data();
     const BodyId* __restrict sub_body = cm.sub_body.data();
     for (size_t k = 0; k < n; ++k) {
         const int32_t t = items[k];
@@ -113,7 +111,7 @@ void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, ContactState
     a.r2 = reach2;
     a.key = key;
     a.item = items;
-    a.start = cs.cell_start.data();
+    a.start = g.cell_start.data();
     a.nx = nx;
     detail::NodeGrid ng;
     ng.lo = lo;
@@ -122,9 +120,9 @@ void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, ContactState
     ng.ny = ny;
 
     // query every target boundary node against its 3x3 block
-    detail::CandWriter w(cs);
+    detail::CandWriter w(out);
     const bool simd = kernel == BroadKernel::Auto && detail::scan_avx512_supported();
-    int32_t* __restrict hits = cs.query.data();
+    int32_t* __restrict hits = g.query.data();
     // (boundary nodes, then the edge targets of docs/theory.md §6.12: ascending target ids)
     auto query = [&](NodeId j) {
         detail::Block blk;
@@ -141,21 +139,22 @@ void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, ContactState
     w.finish();
 }
 
-void find_candidates_brute_force(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs) {
+void find_candidates_brute_force(const Model& m, const Vec2* x, const Vec2* xv, Candidates& out,
+                                 BroadPhaseScratch& g) {
     const ContactModel& cm = m.contact;
-    bounding_circles(m, x, xv, cs);
-    detail::CandWriter w(cs);
+    bounding_circles(m, x, xv, g);
+    detail::CandWriter w(out);
     auto query = [&](NodeId j) {
-        cs.query.clear();
+        g.query.clear();
         const Vec2 xj = target_point(cm, x, j);
         for (int32_t t = 0; t < cm.num_sub_tris(); ++t) {
-            const Real reach = cs.tri_radius[t] + cm.buffer;
-            if (norm2(xj - cs.tri_center[t]) >= reach * reach) continue;
+            const Real reach = g.tri_radius[t] + cm.buffer;
+            if (norm2(xj - g.tri_center[t]) >= reach * reach) continue;
             if (!is_contactor_for(cm, cm.sub_body[t], m.node_body[target_node(cm, j)])) continue;
-            cs.query.push_back(t);
+            g.query.push_back(t);
         }
-        if (!cs.query.empty()) {
-            detail::emit(cm, j, cs.query.data(), static_cast<int32_t>(cs.query.size()), w);
+        if (!g.query.empty()) {
+            detail::emit(cm, j, g.query.data(), static_cast<int32_t>(g.query.size()), w);
         }
     };
     for (NodeId j : cm.boundary_nodes)

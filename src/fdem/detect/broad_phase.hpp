@@ -3,8 +3,8 @@
 // the buffer b, on a uniform grid filled by counting sort (linear time, NBS-like).
 #pragma once
 
+#include "fdem/candidates.hpp"
 #include "fdem/model.hpp"
-#include "fdem/state.hpp"
 
 namespace fdem {
 
@@ -12,15 +12,17 @@ namespace fdem {
 /// always the portable loop (tests compare the two).
 enum class BroadKernel { Auto, Scalar };
 
-/// Rebuild cs.cand_* from current positions: x = real node positions, xv = virtual node
-/// positions (ContactState::xv). A couple (node j, sub-triangle tau) is accepted when
+/// Rebuild the candidate list out from current positions: x = real node positions, xv = virtual
+/// node positions (ContactState::xv). A couple (node j, sub-triangle tau) is accepted when
 /// is_contactor_for(body(tau), body(j)) and |x_j - c_tau| < r_tau + b, with c_tau the centroid
 /// and r_tau the largest centroid-vertex distance. Output is sorted by (node, body, tri) and does
-/// not depend on threading. Uses only the preallocated scratch of cs (grows only).
-void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs,
-                     BroadKernel kernel = BroadKernel::Auto);
+/// not depend on threading. Writes only out and its own grid scratch g (both grow only); the
+/// caller (contact/contact.cpp) decides when to run it and owns both.
+void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, Candidates& out,
+                     BroadPhaseScratch& g, BroadKernel kernel = BroadKernel::Auto);
 
 /// O(N_nodes * N_tris) reference implementation of find_candidates (tests, T11).
-void find_candidates_brute_force(const Model& m, const Vec2* x, const Vec2* xv, ContactState& cs);
+void find_candidates_brute_force(const Model& m, const Vec2* x, const Vec2* xv, Candidates& out,
+                                 BroadPhaseScratch& g);
 
 }  // namespace fdem

@@ -7,38 +7,38 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "fdem/contact_state.hpp"
+#include "fdem/candidates.hpp"
 #include "fdem/math.hpp"
 #include "fdem/model.hpp"
 
 namespace fdem::detail {
 
-// Output cursor over cs.cand_*: the vectors keep the length of the previous detection (no
+// Output cursor over a Candidates list: the vectors keep the length of the previous detection (no
 // clear, so nothing is zero-filled again) and are cut to the written length at the end; the
 // per-node loop writes through raw pointers (no push_back bookkeeping). When full they grow by
 // 25 % within their capacity, beyond it by doubling (rare, and only before warm-up ends).
 struct CandWriter {
-    ContactState& cs;
+    Candidates& out;
     NodeId* node = nullptr;
     BodyId* body = nullptr;
     int32_t* begin = nullptr;
     int32_t* tri = nullptr;
     size_t pairs = 0, tris = 0, pair_cap = 0, tri_cap = 0;
 
-    explicit CandWriter(ContactState& c) : cs(c) {
-        resize(std::max<size_t>(cs.cand_node.size(), 64), std::max<size_t>(cs.cand_tri.size(), 64));
+    explicit CandWriter(Candidates& c) : out(c) {
+        resize(std::max<size_t>(out.node.size(), 64), std::max<size_t>(out.tri.size(), 64));
     }
     void resize(size_t np, size_t nt) {
         pair_cap = np;
         tri_cap = nt;
-        cs.cand_node.resize(pair_cap);
-        cs.cand_body.resize(pair_cap);
-        cs.cand_begin.resize(pair_cap + 1);
-        cs.cand_tri.resize(tri_cap);
-        node = cs.cand_node.data();
-        body = cs.cand_body.data();
-        begin = cs.cand_begin.data();
-        tri = cs.cand_tri.data();
+        out.node.resize(pair_cap);
+        out.body.resize(pair_cap);
+        out.begin.resize(pair_cap + 1);
+        out.tri.resize(tri_cap);
+        node = out.node.data();
+        body = out.body.data();
+        begin = out.begin.data();
+        tri = out.tri.data();
     }
     static size_t grown(size_t need, size_t capacity) {
         const size_t target = need + need / 4 + 64;
@@ -47,16 +47,16 @@ struct CandWriter {
     // room for n more sub-triangles (and at most n more pairs)
     void reserve(size_t n) {
         if (pairs + n > pair_cap || tris + n > tri_cap) {
-            resize(std::max(pair_cap, grown(pairs + n, cs.cand_node.capacity())),
-                   std::max(tri_cap, grown(tris + n, cs.cand_tri.capacity())));
+            resize(std::max(pair_cap, grown(pairs + n, out.node.capacity())),
+                   std::max(tri_cap, grown(tris + n, out.tri.capacity())));
         }
     }
     void finish() {
         begin[pairs] = static_cast<int32_t>(tris);
-        cs.cand_node.resize(pairs);
-        cs.cand_body.resize(pairs);
-        cs.cand_begin.resize(pairs + 1);
-        cs.cand_tri.resize(tris);
+        out.node.resize(pairs);
+        out.body.resize(pairs);
+        out.begin.resize(pairs + 1);
+        out.tri.resize(tris);
     }
 };
 

@@ -5,10 +5,10 @@
 
 #include <string>
 
+#include "fdem/checks.hpp"
 #include "fdem/model.hpp"
 #include "fdem/scenario.hpp"
 #include "fdem/state.hpp"
-#include "io/checkpoint.hpp"
 
 namespace fdem {
 

@@ -161,18 +161,18 @@ void put_state(Sink& o, const State& s) {
     put(o, c.rebuilds);
     put(o, c.skin_used);
     put(o, c.need_rebuild);
-    put(o, c.cand_node);
-    put(o, c.cand_body);
-    put(o, c.cand_begin);
-    put(o, c.cand_tri);
+    put(o, c.cand.node);
+    put(o, c.cand.body);
+    put(o, c.cand.begin);
+    put(o, c.cand.tri);
     // broad-phase grid: kept although it is rebuilt with the candidates, so that a future
     // incremental broad phase cannot silently lose information across a restart
-    put(o, c.tri_center);
-    put(o, c.tri_radius);
-    put(o, c.tri_cell);
-    put(o, c.cell_start);
-    put(o, c.cell_items);
-    put(o, c.query);
+    put(o, c.broad.tri_center);
+    put(o, c.broad.tri_radius);
+    put(o, c.broad.tri_cell);
+    put(o, c.broad.cell_start);
+    put(o, c.broad.cell_items);
+    put(o, c.broad.query);  // in_contact: narrow-phase scratch (not saved)
     put(o, c.active);
     put(o, c.active_next);
     put(o, c.xv);
@@ -508,16 +508,16 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     r.get(c.rebuilds);
     r.get(c.skin_used);
     r.get(c.need_rebuild);
-    r.get(c.cand_node);
-    r.get(c.cand_body);
-    r.get(c.cand_begin);
-    r.get(c.cand_tri);
-    r.get(c.tri_center);
-    r.get(c.tri_radius);
-    r.get(c.tri_cell);
-    r.get(c.cell_start);
-    r.get(c.cell_items);
-    r.get(c.query);
+    r.get(c.cand.node);
+    r.get(c.cand.body);
+    r.get(c.cand.begin);
+    r.get(c.cand.tri);
+    r.get(c.broad.tri_center);
+    r.get(c.broad.tri_radius);
+    r.get(c.broad.tri_cell);
+    r.get(c.broad.cell_start);
+    r.get(c.broad.cell_items);
+    r.get(c.broad.query);
     r.get(c.active);
     r.get(c.active_next);
     r.get(c.xv);
@@ -539,20 +539,20 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     const int32_t nb = m.num_bodies(), ncn = m.contact.target_end();  // target ids
     const int32_t nsub = m.contact.num_sub_tris();
     const auto bad_id = [](int32_t id, int32_t n) { return id < 0 || id >= n; };
-    bool ok = c.cand_node.size() == c.cand_body.size() &&
-              (c.cand_node.empty() ? c.cand_begin.size() <= 1
-                                   : c.cand_begin.size() == c.cand_node.size() + 1) &&
+    bool ok = c.cand.node.size() == c.cand.body.size() &&
+              (c.cand.node.empty() ? c.cand.begin.size() <= 1
+                                   : c.cand.begin.size() == c.cand.node.size() + 1) &&
               c.xv.size() == static_cast<size_t>(m.contact.num_virtual()) &&
               c.vv.size() == c.xv.size();
-    for (size_t p = 0; ok && p < c.cand_node.size(); ++p) {
-        ok = !bad_id(c.cand_node[p], ncn) && !bad_id(c.cand_body[p], nb);
+    for (size_t p = 0; ok && p < c.cand.node.size(); ++p) {
+        ok = !bad_id(c.cand.node[p], ncn) && !bad_id(c.cand.body[p], nb);
     }
-    for (size_t p = 0; ok && p < c.cand_begin.size(); ++p) {
-        ok = c.cand_begin[p] >= 0 && static_cast<size_t>(c.cand_begin[p]) <= c.cand_tri.size() &&
-             (p == 0 || c.cand_begin[p] >= c.cand_begin[p - 1]);
+    for (size_t p = 0; ok && p < c.cand.begin.size(); ++p) {
+        ok = c.cand.begin[p] >= 0 && static_cast<size_t>(c.cand.begin[p]) <= c.cand.tri.size() &&
+             (p == 0 || c.cand.begin[p] >= c.cand.begin[p - 1]);
     }
-    for (size_t k = 0; ok && k < c.cand_tri.size(); ++k)
-        ok = !bad_id(c.cand_tri[k], nsub);
+    for (size_t k = 0; ok && k < c.cand.tri.size(); ++k)
+        ok = !bad_id(c.cand.tri[k], nsub);
     for (size_t k = 0; ok && k < c.active.size(); ++k) {
         ok = !bad_id(c.active[k].node, ncn) && !bad_id(c.active[k].body, nb);
     }

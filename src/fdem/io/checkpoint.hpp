@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "fdem/checks.hpp"
 #include "fdem/measure.hpp"
 #include "fdem/model.hpp"
 #include "fdem/state.hpp"
@@ -32,18 +33,6 @@ constexpr uint32_t kCheckpointFormat = 5;  // 2: baseline A couples (ContactStat
                                            // 3: Energy::work_external_pending
                                            // 4: PairHistory::f_damp
                                            // 5: RunProgress::impulses (bodies.csv)
-
-/// Running energy-balance monitor (the [checks] energy test of the CLI), kept in checkpoints so
-/// a restarted run measures the drift from the same E_0.
-struct EnergyMonitor {
-    bool has_reference = false;
-    Real e0 = 0;         ///< total energy after the first step [J/m]
-    Real scale = 0;      ///< largest energy scale seen so far [J/m]
-    Real max_error = 0;  ///< largest |E_total - E_0| so far [J/m]
-    /// absolute floor of scale, energy_floor() of the model (run_checks.hpp); derived from the
-    /// model at the first check, so not saved in checkpoints (0 = not yet computed) [J/m]
-    Real floor = 0;
-};
 
 /// CLI bookkeeping that must survive a restart so output continues where it stopped.
 struct RunProgress {

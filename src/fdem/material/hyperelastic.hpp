@@ -6,8 +6,8 @@
 
 #include <cmath>
 
+#include "fdem/material.hpp"
 #include "fdem/math.hpp"
-#include "fdem/model.hpp"
 
 namespace fdem {
 

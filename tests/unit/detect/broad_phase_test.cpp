@@ -45,17 +45,18 @@ TEST(BroadPhase, EqualsBruteForceOnRandomLayouts) {
         State s = make_state(m, 1e-6);
         update_virtual_nodes(m, s);
         ContactState grid = s.contact, scalar = s.contact, brute = s.contact;
-        find_candidates(m, s.x.data(), s.contact.xv.data(), grid);
-        find_candidates(m, s.x.data(), s.contact.xv.data(), scalar, BroadKernel::Scalar);
-        find_candidates_brute_force(m, s.x.data(), s.contact.xv.data(), brute);
+        find_candidates(m, s.x.data(), s.contact.xv.data(), grid.cand, grid.broad);
+        find_candidates(m, s.x.data(), s.contact.xv.data(), scalar.cand, scalar.broad,
+                        BroadKernel::Scalar);
+        find_candidates_brute_force(m, s.x.data(), s.contact.xv.data(), brute.cand, brute.broad);
         for (const ContactState* c : {&grid, &scalar}) {
             const char* path = c == &grid ? "default" : "portable";
-            ASSERT_EQ(c->cand_node, brute.cand_node) << "layout " << layout << ", " << path;
-            ASSERT_EQ(c->cand_body, brute.cand_body) << "layout " << layout << ", " << path;
-            ASSERT_EQ(c->cand_begin, brute.cand_begin) << "layout " << layout << ", " << path;
-            ASSERT_EQ(c->cand_tri, brute.cand_tri) << "layout " << layout << ", " << path;
+            ASSERT_EQ(c->cand.node, brute.cand.node) << "layout " << layout << ", " << path;
+            ASSERT_EQ(c->cand.body, brute.cand.body) << "layout " << layout << ", " << path;
+            ASSERT_EQ(c->cand.begin, brute.cand.begin) << "layout " << layout << ", " << path;
+            ASSERT_EQ(c->cand.tri, brute.cand.tri) << "layout " << layout << ", " << path;
         }
-        total += grid.cand_tri.size();
+        total += grid.cand.tri.size();
     }
     std::printf("[ info ] %zu candidate couples over 100 layouts\n", total);
     EXPECT_GT(total, 1000u);
@@ -69,21 +70,21 @@ TEST(BroadPhase, RepeatedDetectionsUseNoStaleScratch) {
     const Model m = random_layout(rng, 400, 20.0, true);
     State s = make_state(m, 1e-6);
     update_virtual_nodes(m, s);
-    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact);
-    const std::vector<int32_t> first = s.contact.cand_tri;
-    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact);
-    EXPECT_EQ(s.contact.cand_tri, first);
+    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad);
+    const std::vector<int32_t> first = s.contact.cand.tri;
+    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad);
+    EXPECT_EQ(s.contact.cand.tri, first);
     for (Vec2& p : s.x)
         p = Vec2{p.x * 0.7 + 1.0, p.y * 0.7 - 2.0};  // denser: more candidates than before
     update_virtual_nodes(m, s);
     ContactState brute = s.contact;
-    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact);
-    find_candidates_brute_force(m, s.x.data(), s.contact.xv.data(), brute);
-    EXPECT_GT(s.contact.cand_tri.size(), first.size());
-    EXPECT_EQ(s.contact.cand_node, brute.cand_node);
-    EXPECT_EQ(s.contact.cand_body, brute.cand_body);
-    EXPECT_EQ(s.contact.cand_begin, brute.cand_begin);
-    EXPECT_EQ(s.contact.cand_tri, brute.cand_tri);
+    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad);
+    find_candidates_brute_force(m, s.x.data(), s.contact.xv.data(), brute.cand, brute.broad);
+    EXPECT_GT(s.contact.cand.tri.size(), first.size());
+    EXPECT_EQ(s.contact.cand.node, brute.cand.node);
+    EXPECT_EQ(s.contact.cand.body, brute.cand.body);
+    EXPECT_EQ(s.contact.cand.begin, brute.cand.begin);
+    EXPECT_EQ(s.contact.cand.tri, brute.cand.tri);
 }
 
 TEST(BroadPhase, RoughlyLinearRuntime) {
@@ -94,11 +95,11 @@ TEST(BroadPhase, RoughlyLinearRuntime) {
         State s = make_state(m, 1e-6);
         update_virtual_nodes(m, s);
         const auto t0 = std::chrono::steady_clock::now();
-        find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact);
+        find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad);
         const auto t1 = std::chrono::steady_clock::now();
         std::printf("[ info ] %d bodies: %.2f ms, %zu couples\n", n,
                     std::chrono::duration<double, std::milli>(t1 - t0).count(),
-                    s.contact.cand_tri.size());
+                    s.contact.cand.tri.size());
     }
 }
 

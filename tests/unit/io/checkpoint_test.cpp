@@ -262,12 +262,17 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // 768 -> 800 (State 1016 -> 1048): ContactState::body_box (per-step scratch of the narrow
     // phase's early reject) and box_reject (a test switch, default on) are not saved: neither
     // carries information between steps, and the reject does not change any result
-    EXPECT_EQ(sizeof(ContactState), 800u) << "ContactState changed: update io/checkpoint.cpp";
+    // 800 -> 824: ContactState::in_contact, the narrow phase's own list of pairs in contact
+    // (per-step scratch, not saved), which it used to share with the broad phase (query, now
+    // ContactState::broad.query, saved as before); the candidates and grid moved into
+    // ContactState::cand / ::broad unchanged
+    EXPECT_EQ(sizeof(ContactState), 824u) << "ContactState changed: update io/checkpoint.cpp";
     // 1048 -> 1072: State::scratch_load (the load forces of the current step, rewritten at the
     // start of every step from x^n; not saved)
     // 1072 -> 1096: State::bc_reaction (the supports' reactions of the last step, rewritten by
     // every step before bodies.csv reads them after it) is not saved
-    EXPECT_EQ(sizeof(State), 1096u) << "State changed: update io/checkpoint.cpp";
+    // 1096 -> 1120: ContactState 800 -> 824 above
+    EXPECT_EQ(sizeof(State), 1120u) << "State changed: update io/checkpoint.cpp";
 }
 
 // Loads (theory §4.1): the half of the load work that belongs after t^n travels in

@@ -401,10 +401,10 @@ TEST(LegacyDynamics, ContactLoopsBitwiseSameForOneTwoThreeThreads) {
                 const void* q = c.legacy.next.data();
                 const void* lo = std::less<const void*>{}(p, q) ? p : q;
                 const void* hi = lo == p ? q : p;
-                return std::vector<const void*>{c.cand_node.data(),
-                                                c.cand_tri.data(),
+                return std::vector<const void*>{c.cand.node.data(),
+                                                c.cand.tri.data(),
                                                 c.pair_out.data(),
-                                                c.cell_start.data(),
+                                                c.broad.cell_start.data(),
                                                 lo,
                                                 hi,
                                                 c.legacy.couple_force.data(),
@@ -418,7 +418,7 @@ TEST(LegacyDynamics, ContactLoopsBitwiseSameForOneTwoThreeThreads) {
                 step(m, s);
                 max_active = std::max(max_active, c.active_contacts);
                 max_work =
-                    std::max(max_work, std::max(c.cand_node.size(), c.legacy.couples.size()));
+                    std::max(max_work, std::max(c.cand.node.size(), c.legacy.couples.size()));
             }
             const std::vector<const void*> after = storage();
             EXPECT_EQ(before, after) << name_of(alg) << ", " << threads << " threads";
