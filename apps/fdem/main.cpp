@@ -27,20 +27,21 @@
 #include <CLI/CLI.hpp>
 
 #include "fdem/fdem.hpp"
-#include "integrate/run_checks.hpp"
-#include "io/checkpoint.hpp"
 
 namespace {
 
 constexpr int kExitSimulation = 1;
 constexpr int kExitInput = 2;
 
-/// Signal number of a pending SIGINT / SIGTERM (0: none). The run finishes its step, writes a
-/// checkpoint and exits with 128 + signal.
+/// Signal number of a pending SIGINT / SIGTERM (0: none). The handler asks the running
+/// Simulation to stop (async-signal-safe); it finishes its step, writes a checkpoint, and the
+/// program exits with 128 + signal.
 volatile std::sig_atomic_t g_stop_signal = 0;
+fdem::Simulation* g_sim = nullptr;
 
 extern "C" void on_stop_signal(int sig) {
     g_stop_signal = sig;
+    if (g_sim != nullptr) g_sim->request_stop();
 }
 
 void install_signal_handlers() {
@@ -216,219 +217,97 @@ int run(const RunOptions& opt) {
     }
     if (opt.out_given) sc.run.output.dir = opt.out;
     if (opt.threads > 0) omp_set_num_threads(opt.threads);
-    const fdem::Model& m = sc.model;
     const bool tty = isatty(STDERR_FILENO) && !opt.quiet;
     // batch runs (stderr to a file or pipe): a full progress line every progress_every seconds
     const bool batch = !isatty(STDERR_FILENO) && !opt.quiet && opt.progress_every > 0;
     if (!opt.quiet) print_summary(sc);
     print_warnings(sc);
 
-    namespace fs = std::filesystem;
-    const fs::path out = sc.run.output.dir;
-    std::error_code ec;
-    fs::create_directories(out, ec);
-    if (ec) {
-        throw fdem::InputError(
-            {sc.path, 0, 0}, "output.dir",
-            fmt::format("cannot create output folder '{}': {}", out.string(), ec.message()));
-    }
-    {
-        // a folder that exists but cannot be written is an input problem, found before step 0
-        const fs::path probe = out / ".fdem_write_test";
-        std::FILE* f = std::fopen(probe.c_str(), "w");
-        const int err = errno;
-        if (f == nullptr) {
-            throw fdem::InputError(
-                {opt.out_given ? std::string("--out") : sc.path, 0, 0}, "output.dir",
-                fmt::format("cannot write into the output folder '{}': {}; expected a writable "
-                            "folder ([output] dir or --out)",
-                            out.string(), std::strerror(err)));
-        }
-        std::fclose(f);
-        fs::remove(probe, ec);
-    }
-    const std::string checkpoint_path = (out / "checkpoint.fdck").string();
-
-    // fresh state, or the state and output bookkeeping of a checkpoint
-    fdem::State s = fdem::make_state(m, sc.run.dt);
-    fdem::RunProgress prog;
+    fdem::Simulation sim(std::move(sc));
+    const fdem::Model& m = sim.model();
+    const fdem::State& s = sim.state();
+    sim.open_output("", opt.out_given ? std::string("--out") : std::string());
+    const std::string out = sim.output_dir();
     if (!opt.restart.empty()) {
-        fdem::read_checkpoint(opt.restart, m, s, prog);
+        sim.restore_checkpoint(opt.restart);
         if (!opt.quiet) {
             fmt::print("restart    {} at step {} (t = {:.6g} s)\n", opt.restart, s.step, s.time);
         }
-        // continuing into another folder: the frames and history rows written before the
-        // checkpoint stay next to it; series.pvd refers to those frames by a relative path and
-        // history.csv starts with the old rows, so the new folder describes the whole run
-        const fs::path from = fs::absolute(fs::path(opt.restart)).parent_path();
-        if (!fs::equivalent(from, out, ec)) {
-            for (auto& [t, file] : prog.frames) {
-                if (fs::exists(out / file, ec)) continue;
-                if (fs::exists(from / file, ec)) {
-                    file = fs::relative(from / file, fs::absolute(out)).string();
-                } else {
-                    fmt::print(stderr,
-                               "warning: frame {} (t = {:.6g} s) of the run before the restart "
-                               "is not in {} nor in {}; series.pvd lists it anyway\n",
-                               file, t, from.string(), out.string());
-                }
-            }
-            if (!fs::exists(out / "history.csv", ec) && fs::exists(from / "history.csv", ec)) {
-                fs::copy_file(from / "history.csv", out / "history.csv", ec);
-            }
-        }
     }
-    std::unique_ptr<fdem::HistoryWriter> history =
-        opt.restart.empty()
-            ? std::make_unique<fdem::HistoryWriter>((out / "history.csv").string())
-            : std::make_unique<fdem::HistoryWriter>((out / "history.csv").string(), s.step);
-    // bodies.csv: resultants, reactions and mean motion per body entry and boundary group
-    std::unique_ptr<fdem::Resultants> resultants;
-    std::unique_ptr<fdem::BodiesWriter> bodies;
-    if (sc.run.output.bodies) {
-        resultants = std::make_unique<fdem::Resultants>(m);
-        bodies = std::make_unique<fdem::BodiesWriter>((out / "bodies.csv").string(), *resultants,
-                                                      opt.restart.empty() ? -1 : s.step);
-        if (prog.impulses.contact.size() != static_cast<size_t>(resultants->num_sets())) {
-            prog.impulses = resultants->make_impulses();  // fresh, or the checkpoint had none
-        }
-        if (bodies->header_changed()) {
-            fmt::print(stderr, "note: {} had other columns; its earlier rows were dropped\n",
-                       (out / "bodies.csv").string());
-        }
-    }
-    // probes.csv: the [[probe]] entries
-    std::unique_ptr<fdem::ProbesWriter> probes;
-    if (!sc.run.output.probes.empty()) {
-        probes = std::make_unique<fdem::ProbesWriter>((out / "probes.csv").string(),
-                                                      sc.run.output.probes,
-                                                      opt.restart.empty() ? -1 : s.step);
-        if (probes->header_changed()) {
-            fmt::print(stderr, "note: {} had other columns; its earlier rows were dropped\n",
-                       (out / "probes.csv").string());
-        }
-    }
-    fdem::PvdSeries series((out / "series.pvd").string());
-    for (const auto& [t, file] : prog.frames)
-        series.add(t, file);
+    sim.set_checkpoint_every(opt.checkpoint_every);
+    sim.set_warning_handler([tty](const std::string& warning) {
+        fmt::print(stderr, "{}{} (further warnings suppressed)\n", tty ? "\n" : "", warning);
+    });
 
-    const double interval =
-        sc.run.output.interval > 0 ? sc.run.output.interval : sc.run.end_time / 100.0;
-    std::string last_frame;  // last output frame written by this process (a good state)
-    auto write_output = [&]() {
-        history->write(m, s);
-        if (bodies) {
-            bodies->write(m, s, prog.impulses);
-            prog.impulses.clear();
-        }
-        if (probes) probes->write(m, s);
-        if (sc.run.output.vtu) {
-            const std::string name = fmt::format("frame_{:06d}.vtu", prog.frame);
-            fdem::write_vtu((out / name).string(), m, s);
-            series.add(s.time, name);
-            prog.frames.emplace_back(s.time, name);
-            last_frame = fmt::format("{} (t = {:.6g} s)", (out / name).string(), s.time);
-        }
-        ++prog.frame;
-        prog.next_output += interval;
-    };
-    std::string last_checkpoint;
-    auto write_checkpoint = [&]() {
-        fdem::write_checkpoint(checkpoint_path, m, s, prog);
-        last_checkpoint =
-            fmt::format("{} (step {}, t = {:.6g} s)", checkpoint_path, s.step, s.time);
-    };
-    double next_checkpoint = s.time + opt.checkpoint_every;
-
+    g_sim = &sim;
     install_signal_handlers();
     const auto t0 = clock::now();
     auto last_progress = t0;
     const int64_t start_step = s.step;
-    const int64_t total_steps = static_cast<int64_t>(std::ceil(sc.run.end_time / s.dt - 1e-9));
-    bool warned = false;
-    try {
-        while (s.step < total_steps) {
-            // the strain energy (a log per triangle) only where it is read: the first step (E_0),
-            // every 16th step (energy-balance check), output and checkpoint steps, the last step
-            // (State::need_energy; x and v are bitwise the same either way)
-            const double t_next = s.time + s.dt;
-            s.need_energy = s.step == 0 || (s.step + 1) % 16 == 0 || s.step + 1 == total_steps ||
-                            t_next >= prog.next_output - 0.5 * s.dt ||
-                            (opt.checkpoint_every > 0 && t_next >= next_checkpoint - 0.5 * s.dt);
-            fdem::step(m, s);
-            if (resultants) resultants->accumulate(m, s, prog.impulses);
-            const std::string warning = fdem::check_run(m, s, sc.run, prog.energy);
-            if (!warning.empty() && !warned) {
-                fmt::print(stderr, "{}{} (further warnings suppressed)\n", tty ? "\n" : "",
-                           warning);
-                warned = true;
-            }
-            const bool last = s.step == total_steps;
-            const bool output_due = s.time >= prog.next_output - 0.5 * s.dt || last;
-            const bool checkpoint_due =
-                opt.checkpoint_every > 0 && (s.time >= next_checkpoint - 0.5 * s.dt || last);
-            // NaN/Inf check every 16 steps and before anything is written: files hold good states
-            if (s.step % 16 == 0 || output_due || checkpoint_due || g_stop_signal != 0) {
-                fdem::check_state(m, s);
-            }
-            if (output_due) write_output();
-            if (checkpoint_due) {
-                write_checkpoint();
-                while (next_checkpoint <= s.time + 0.5 * s.dt)
-                    next_checkpoint += opt.checkpoint_every;
-            }
-            if (g_stop_signal != 0) {
-                const int sig = g_stop_signal;
-                if (!checkpoint_due) write_checkpoint();
-                if (tty) fmt::print(stderr, "\n");
+    const int64_t total_steps = sim.steps_to(sim.settings().end_time);
+    // the progress lines: a callback after every step (a clock read; none when quiet)
+    const fdem::Simulation::StepCallback progress = [&](fdem::Simulation&) {
+        if (batch) {
+            const auto now = clock::now();
+            if (std::chrono::duration<double>(now - last_progress).count() >= opt.progress_every) {
+                last_progress = now;
+                const double wall = std::chrono::duration<double>(now - t0).count();
+                const double sps = static_cast<double>(s.step - start_step) / wall;
                 fmt::print(stderr,
-                           "stopped by {} after step {} (t = {:.6g} s); checkpoint written to {}\n"
-                           "continue with: fdem run {} --out {} --restart {}\n",
-                           sig == SIGINT ? "SIGINT" : "SIGTERM", s.step, s.time, checkpoint_path,
-                           opt.scenario, out.string(), checkpoint_path);
-                return 128 + sig;
+                           "progress   step {} / {}  t = {:.6g} s  {:.3g} steps/s  ETA {:.0f} s\n",
+                           s.step, total_steps, s.time, sps,
+                           static_cast<double>(total_steps - s.step) / sps);
             }
-            if (batch) {
-                const auto now = clock::now();
-                if (std::chrono::duration<double>(now - last_progress).count() >=
-                    opt.progress_every) {
-                    last_progress = now;
-                    const double wall = std::chrono::duration<double>(now - t0).count();
-                    const double sps = static_cast<double>(s.step - start_step) / wall;
-                    fmt::print(stderr,
-                               "progress   step {} / {}  t = {:.6g} s  {:.3g} steps/s  ETA {:.0f} "
-                               "s\n",
-                               s.step, total_steps, s.time, sps,
-                               static_cast<double>(total_steps - s.step) / sps);
-                }
+        }
+        if (tty) {
+            const auto now = clock::now();
+            if (now - last_progress > std::chrono::milliseconds(500)) {
+                last_progress = now;
+                const double wall = std::chrono::duration<double>(now - t0).count();
+                const double sps = static_cast<double>(s.step - start_step) / wall;
+                fmt::print(stderr,
+                           "\rstep {:>9} / {}  t = {:.4e} s  {:.3g} steps/s  ETA {:.0f} s   ",
+                           s.step, total_steps, s.time, sps,
+                           static_cast<double>(total_steps - s.step) / sps);
             }
-            if (tty) {
-                const auto now = clock::now();
-                if (now - last_progress > std::chrono::milliseconds(500)) {
-                    last_progress = now;
-                    const double wall = std::chrono::duration<double>(now - t0).count();
-                    const double sps = static_cast<double>(s.step - start_step) / wall;
-                    fmt::print(stderr,
-                               "\rstep {:>9} / {}  t = {:.4e} s  {:.3g} steps/s  ETA {:.0f} s   ",
-                               s.step, total_steps, s.time, sps,
-                               static_cast<double>(total_steps - s.step) / sps);
-                }
-            }
+        }
+        return true;
+    };
+    try {
+        const fdem::RunResult res =
+            sim.run_to_end(tty || batch ? progress : fdem::Simulation::StepCallback{});
+        if (res.status == fdem::RunStatus::Stopped) {
+            const int sig = g_stop_signal;
+            if (tty) fmt::print(stderr, "\n");
+            fmt::print(stderr,
+                       "stopped by {} after step {} (t = {:.6g} s); checkpoint written to {}\n"
+                       "continue with: fdem run {} --out {} --restart {}\n",
+                       sig == SIGINT ? "SIGINT" : "SIGTERM", s.step, s.time, sim.checkpoint_path(),
+                       opt.scenario, out, sim.checkpoint_path());
+            return 128 + sig;
         }
     } catch (const fdem::SimulationError& err) {
         if (tty) fmt::print(stderr, "\n");
         fmt::print(stderr, "error: {}\n", err.what());
-        fdem::write_vtu((out / "failure.vtu").string(), m, s);
-        fmt::print(stderr, "the state at failure is in {}\n", (out / "failure.vtu").string());
-        if (!last_frame.empty()) fmt::print(stderr, "last good output frame: {}\n", last_frame);
-        if (!last_checkpoint.empty()) {
-            fmt::print(stderr, "last good checkpoint: {}\n", last_checkpoint);
+        if (!sim.failure_write_error().empty()) {
+            fmt::print(stderr, "error: {}\n", sim.failure_write_error());
+            return kExitSimulation;
+        }
+        if (!sim.failure_file().path.empty()) {
+            fmt::print(stderr, "the state at failure is in {}\n", sim.failure_file().path);
+        }
+        if (const fdem::WrittenFile& f = sim.last_frame(); !f.path.empty()) {
+            fmt::print(stderr, "last good output frame: {} (t = {:.6g} s)\n", f.path, f.time);
+        }
+        if (const fdem::WrittenFile& c = sim.last_checkpoint(); !c.path.empty()) {
+            fmt::print(stderr, "last good checkpoint: {} (step {}, t = {:.6g} s)\n", c.path, c.step,
+                       c.time);
         }
         return kExitSimulation;
     }
     if (tty) fmt::print(stderr, "\n");
     const double wall = std::chrono::duration<double>(clock::now() - t0).count();
-    const uint64_t hash = fdem::state_hash(s);
+    const uint64_t hash = sim.state_hash();
     if (!opt.quiet) {
         const double steps = static_cast<double>(s.step - start_step);
         fmt::print("done       {} steps in {:.2f} s ({:.3g} steps/s, {:.3g} element-steps/s)\n",
@@ -437,13 +316,13 @@ int run(const RunOptions& opt) {
             "energy     kinetic {:.6g}, strain {:.6g}, contact {:.6g}, dissipated {:.6g} J/m\n",
             s.energy.kinetic, s.energy.strain, s.energy.contact,
             s.energy.dissipated_viscous + s.energy.dissipated_contact);
-        const fdem::EnergyMonitor& e = prog.energy;
+        const fdem::EnergyMonitor& e = sim.energy_monitor();
         fmt::print(
             "balance    max |E_total - E_0| = {:.3g} J/m = {:.3g} % of the energy scale "
             "{:.6g} J/m\n",
             e.max_error, e.scale > 0 ? 100.0 * e.max_error / e.scale : 0.0, e.scale);
-        fmt::print("output     {} ({} frames; open series.pvd in ParaView)\n", out.string(),
-                   prog.frame);
+        fmt::print("output     {} ({} frames; open series.pvd in ParaView)\n", out,
+                   sim.frames_written());
         fmt::print("state      step {}, t = {:.6g} s, hash {:016x} (x, v, energies)\n", s.step,
                    s.time, hash);
     } else if (opt.print_hash) {
@@ -465,8 +344,7 @@ int main(int argc, char** argv) {
     RunOptions ro;
     auto* run_cmd = app.add_subcommand("run", "run a scenario");
     run_cmd->add_option("scenario", ro.scenario, "scenario file (TOML)")->required();
-    run_cmd
-        ->add_option("--out", ro.out, "output folder (default: [output] dir of the scenario)")
+    run_cmd->add_option("--out", ro.out, "output folder (default: [output] dir of the scenario)")
         ->check(CLI::Validator(
             [](const std::string& v) -> std::string {
                 return v.empty() ? "expected a non-empty folder path, got \"\"" : "";

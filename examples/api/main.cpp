@@ -1,8 +1,10 @@
 // fdem as a library: a program that builds or loads a model through the public API
-// (include/fdem/*.hpp), steps it and prints its energies and the state hash.
+// (include/fdem/*.hpp), runs it with fdem::Simulation (the CLI's run loop: run-time checks,
+// output, checkpoints) and prints its energies and the state hash.
 //
 //   fdem_api_demo                         build a block dropped on a slab in code, run 0.1 s
-//   fdem_api_demo SCENARIO [END_TIME]     load a TOML scenario, run to its end time (or END_TIME s)
+//   fdem_api_demo SCENARIO [END_TIME [OUT]]  load a TOML scenario, run to its end time (or
+//                                            END_TIME s); with OUT: output files and checkpoints
 //
 // With a scenario, the last line is "hash <16 hex digits>", the same hash as
 //   fdem run SCENARIO --end-time END_TIME --quiet --print-hash
@@ -16,6 +18,7 @@
 #include <exception>
 #include <numeric>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fdem/fdem.hpp>  // umbrella header: build, scenario, simulate, state, output, version
@@ -54,7 +57,7 @@ fdem::Scenario build_in_code() {
                   {0.5, -1.0});
 
     m.contact.algorithm = fdem::ContactAlgorithm::Smooth;  // penalty 0 = 5 E_min (default)
-    fdem::finalize_model(m);  // masses, geometry, contact topology
+    fdem::finalize_model(m);                               // masses, geometry, contact topology
 
     sc.run.stable_dt = fdem::stable_time_step(m, &sc.run.limiting_tri);
     sc.run.dt = 0.2 * sc.run.stable_dt;  // s
@@ -62,35 +65,52 @@ fdem::Scenario build_in_code() {
     return sc;
 }
 
-int run(fdem::Scenario& sc) {
-    const fdem::Model& m = sc.model;
-    fdem::State s = fdem::make_state(m, sc.run.dt);
-    // the same step count as `fdem run`
-    const int64_t steps = static_cast<int64_t>(std::ceil(sc.run.end_time / s.dt - 1e-9));
+// Run with fdem::Simulation, the run loop of `fdem run`: energies where they are read, the
+// [checks] (energy balance, penetration, NaN/inversion), output and checkpoints when out is given.
+int run(fdem::Scenario sc, const std::string& out) {
+    fdem::Simulation sim(std::move(sc));
+    const fdem::Model& m = sim.model();
+    const fdem::State& s = sim.state();
+    const fdem::RunSettings& rs = sim.settings();
     std::printf("fdem       %s (headers %d.%d.%d)\n", fdem::kVersion, FDEM_VERSION_MAJOR,
                 FDEM_VERSION_MINOR, FDEM_VERSION_PATCH);
-    std::printf("scenario   %s\n", sc.path.c_str());
+    std::printf("scenario   %s\n", sim.name().c_str());
     std::printf("model      %d bodies, %d nodes, %d triangles\n", m.num_bodies(), m.num_nodes(),
                 m.num_tris());
-    std::printf("dt         %.4g s (stable limit %.4g s), %" PRId64 " steps\n", s.dt,
-                sc.run.stable_dt, steps);
-
-    double e0 = 0, scale = 0, max_error = 0;  // energy balance from the first step on [J/m]
-    while (s.step < steps) {
-        fdem::step(m, s);  // State::need_energy stays true: energies are fresh every step
-        if (s.step % 16 == 0 || s.step == steps) fdem::check_state(m, s);  // NaN, inversion
-        const fdem::Energy& e = s.energy;
-        if (s.step == 1) e0 = e.total();
-        scale = std::max({scale, e.kinetic, e.strain + e.contact, std::abs(e.work_gravity)});
-        max_error = std::max(max_error, std::abs(e.total() - e0));
+    std::printf("dt         %.4g s (stable limit %.4g s), %" PRId64 " steps\n", s.dt, rs.stable_dt,
+                sim.steps_to(rs.end_time));
+    if (!out.empty()) {
+        sim.open_output(out);                         // VTU + PVD, history.csv, failure.vtu
+        sim.set_checkpoint_every(rs.end_time / 4.0);  // out/checkpoint.fdck
     }
+    sim.set_warning_handler([](const std::string& w) { std::fprintf(stderr, "%s\n", w.c_str()); });
+
+    // a callback every 1000 steps; returning false would stop the run there
+    sim.run_to_end(
+        [](fdem::Simulation& sm) {
+            std::printf("progress   step %" PRId64 ", t = %.4g s, E = %.6g J/m\n", sm.state().step,
+                        sm.state().time, sm.state().energy.total());
+            return true;
+        },
+        1000);
+
     const fdem::Energy& e = s.energy;
     std::printf("energy     kinetic %.6g, strain %.6g, contact %.6g, dissipated %.6g J/m\n",
                 e.kinetic, e.strain, e.contact, e.dissipated_viscous + e.dissipated_contact);
-    std::printf("balance    max |E_total - E_1| = %.3g J/m = %.3g %% of %.6g J/m\n", max_error,
-                scale > 0 ? 100.0 * max_error / scale : 0.0, scale);
+    const fdem::EnergyMonitor& mon = sim.energy_monitor();
+    std::printf(
+        "balance    max |E_total - E_0| = %.3g J/m = %.3g %% of the energy scale %.6g J/m\n",
+        mon.max_error, mon.scale > 0 ? 100.0 * mon.max_error / mon.scale : 0.0, mon.scale);
+    if (!out.empty()) {
+        // restart from the last checkpoint written (at end_time): the same bits
+        fdem::Simulation again(fdem::load_scenario(sim.name()));
+        again.settings().end_time = rs.end_time;
+        again.restore_checkpoint(sim.checkpoint_path());
+        std::printf("restart    from %s: hash %s\n", sim.checkpoint_path().c_str(),
+                    again.state_hash() == sim.state_hash() ? "equal" : "DIFFERENT");
+    }
     std::printf("state      step %" PRId64 ", t = %.6g s\n", s.step, s.time);
-    std::printf("hash %016" PRIx64 "\n", fdem::state_hash(s));
+    std::printf("hash %016" PRIx64 "\n", sim.state_hash());
     return 0;
 }
 
@@ -99,6 +119,8 @@ int run(fdem::Scenario& sc) {
 int main(int argc, char** argv) {
     try {
         fdem::Scenario sc;
+        std::string out;
+        if (argc > 3) out = argv[3];
         if (argc > 1) {
             sc = fdem::load_scenario(argv[1]);  // InputError on bad input
             if (argc > 2) {
@@ -113,7 +135,7 @@ int main(int argc, char** argv) {
         } else {
             sc = build_in_code();
         }
-        return run(sc);
+        return run(std::move(sc), out);
     } catch (const fdem::InputError& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return 2;

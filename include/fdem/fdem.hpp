@@ -2,7 +2,9 @@
 #pragma once
 
 #include "fdem/build.hpp"
+#include "fdem/checks.hpp"
 #include "fdem/error.hpp"
+#include "fdem/material.hpp"
 #include "fdem/math.hpp"
 #include "fdem/measure.hpp"
 #include "fdem/mesh.hpp"
@@ -10,5 +12,6 @@
 #include "fdem/output.hpp"
 #include "fdem/scenario.hpp"
 #include "fdem/simulate.hpp"
+#include "fdem/simulation.hpp"
 #include "fdem/state.hpp"
 #include "fdem/version.hpp"

@@ -11,16 +11,20 @@
 #include "element/cst.hpp"
 #include "fdem/scenario.hpp"
 #include "fdem/simulate.hpp"
+#include "support/alloc_count.hpp"
 #include "support/hash.hpp"
 #include "support/scenes.hpp"
 
 // Counting global allocator for this test executable: while g_counting is set, every operator
 // new is counted. Replacing the global operator new is the only way to see allocations made
-// inside the library and the standard containers it uses.
-namespace {
+// inside the library and the standard containers it uses. Other tests of this executable use
+// the counters through support/alloc_count.hpp.
+namespace alloc_count {
 std::atomic<bool> g_counting{false};
 std::atomic<long> g_allocations{0};
-}  // namespace
+}  // namespace alloc_count
+using alloc_count::g_allocations;
+using alloc_count::g_counting;
 
 void* operator new(std::size_t n) {
     if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1);

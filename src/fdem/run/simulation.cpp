@@ -1,0 +1,434 @@
+// The run loop (include/fdem/simulation.hpp; docs/architecture.md "The run loop").
+#include "fdem/simulation.hpp"
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "fdem/build.hpp"
+#include "fdem/error.hpp"
+#include "fdem/measure.hpp"
+#include "fdem/output.hpp"
+#include "fdem/simulate.hpp"
+#include "integrate/run_checks.hpp"
+#include "io/checkpoint.hpp"
+
+namespace fdem {
+
+namespace fs = std::filesystem;
+
+// a signal handler stores into the stop flag: only a lock-free atomic is async-signal-safe
+static_assert(std::atomic<int>::is_always_lock_free);
+
+struct Simulation::Impl {
+    std::string name;
+    Model model;
+    RunSettings run;
+    State state;
+    RunProgress prog;        ///< output bookkeeping and energy monitor (saved in checkpoints)
+    bool restarted = false;  ///< the state came from a checkpoint: continue its output files
+
+    std::string out_dir;  ///< "" = no output
+    std::unique_ptr<HistoryWriter> history;
+    std::unique_ptr<PvdSeries> series;
+    std::unique_ptr<Resultants> resultants;  ///< bodies.csv sums (output.bodies)
+    std::unique_ptr<BodiesWriter> bodies;
+    std::unique_ptr<ProbesWriter> probes;  ///< probes.csv ([[probe]] entries)
+    WrittenFile last_frame, last_checkpoint, failure;
+    std::string failure_error;
+    Real checkpoint_every = 0;
+    Real next_checkpoint = 0;
+
+    std::atomic<int> stop{0};
+    std::string first_warning;
+    int64_t warnings = 0;
+    std::function<void(const std::string&)> on_warning;
+    std::function<void(const std::string&)> on_notice = [](const std::string& text) {
+        fmt::print(stderr, "{}\n", text);
+    };
+    std::string restart_from;  ///< folder of the checkpoint restored ("" = none)
+
+    Impl(std::string n, Model&& m, RunSettings r)
+        : name(std::move(n)),
+          model(std::move(m)),
+          run(std::move(r)),
+          state(make_state(model, run.dt)) {}
+
+    int64_t steps_to(Real t) const { return static_cast<int64_t>(std::ceil(t / state.dt - 1e-9)); }
+
+    // The writers are created at the first run, after a possible restore_checkpoint(), so that a
+    // restart continues history.csv instead of truncating it.
+    void ensure_writers() {
+        if (out_dir.empty() || history) return;
+        const fs::path out = out_dir;
+        if (!restart_from.empty()) adopt_earlier_output();
+        history = restarted
+                      ? std::make_unique<HistoryWriter>((out / "history.csv").string(), state.step)
+                      : std::make_unique<HistoryWriter>((out / "history.csv").string());
+        // bodies.csv: resultants, reactions and mean motion per body entry and boundary group
+        const int64_t resume = restarted ? state.step : -1;
+        if (run.output.bodies) {
+            resultants = std::make_unique<Resultants>(model);
+            bodies =
+                std::make_unique<BodiesWriter>((out / "bodies.csv").string(), *resultants, resume);
+            if (prog.impulses.contact.size() != static_cast<size_t>(resultants->num_sets())) {
+                prog.impulses = resultants->make_impulses();  // fresh, or the checkpoint had none
+            }
+            if (bodies->header_changed() && on_notice) {
+                on_notice(fmt::format("note: {} had other columns; its earlier rows were dropped",
+                                      (out / "bodies.csv").string()));
+            }
+        }
+        // probes.csv: the [[probe]] entries
+        if (!run.output.probes.empty()) {
+            probes = std::make_unique<ProbesWriter>((out / "probes.csv").string(),
+                                                    run.output.probes, resume);
+            if (probes->header_changed() && on_notice) {
+                on_notice(fmt::format("note: {} had other columns; its earlier rows were dropped",
+                                      (out / "probes.csv").string()));
+            }
+        }
+        series = std::make_unique<PvdSeries>((out / "series.pvd").string());
+        for (const auto& [t, file] : prog.frames)
+            series->add(t, file);
+    }
+
+    void close_writers() {
+        history.reset();
+        series.reset();
+        bodies.reset();
+        resultants.reset();
+        probes.reset();
+    }
+
+    // Continuing into another folder: the frames and history rows written before the checkpoint
+    // stay next to it; series.pvd refers to those frames by a relative path and history.csv
+    // starts with the old rows, so the new folder describes the whole run.
+    void adopt_earlier_output() {
+        const fs::path out = out_dir;
+        const fs::path from = restart_from;
+        restart_from.clear();
+        std::error_code ec;
+        if (fs::equivalent(from, out, ec)) return;
+        for (auto& [t, file] : prog.frames) {
+            if (fs::exists(out / file, ec)) continue;
+            if (fs::exists(from / file, ec)) {
+                file = fs::relative(from / file, fs::absolute(out)).string();
+            } else if (on_notice) {
+                on_notice(
+                    fmt::format("warning: frame {} (t = {:.6g} s) of the run before the "
+                                "restart is not in {} nor in {}; series.pvd lists it anyway",
+                                file, t, from.string(), out.string()));
+            }
+        }
+        if (!fs::exists(out / "history.csv", ec) && fs::exists(from / "history.csv", ec)) {
+            fs::copy_file(from / "history.csv", out / "history.csv", ec);
+        }
+    }
+
+    void write_output() {
+        const fs::path out = out_dir;
+        history->write(model, state);
+        if (bodies) {
+            bodies->write(model, state, prog.impulses);
+            prog.impulses.clear();
+        }
+        if (probes) probes->write(model, state);
+        if (run.output.vtu) {
+            const std::string name = fmt::format("frame_{:06d}.vtu", prog.frame);
+            write_vtu((out / name).string(), model, state);
+            series->add(state.time, name);
+            prog.frames.emplace_back(state.time, name);
+            last_frame = {(out / name).string(), state.step, state.time};
+        }
+        ++prog.frame;
+        const Real interval = run.output.interval > 0 ? run.output.interval : run.end_time / 100.0;
+        prog.next_output += interval;
+    }
+
+    std::string checkpoint_path() const {
+        return out_dir.empty() ? std::string() : (fs::path(out_dir) / "checkpoint.fdck").string();
+    }
+
+    void write_checkpoint_file(const std::string& path) {
+        write_checkpoint(path, model, state, prog);
+        last_checkpoint = {path, state.step, state.time};
+    }
+
+    /// One step of the loop: energies where they are read, step, checks, output and checkpoint
+    /// when due. total: steps to end_time (final frame and checkpoint); target: last step of
+    /// this run. Returns whether a stop was requested (the checkpoint is then written).
+    bool advance(int64_t total, int64_t target, bool all_energy) {
+        State& s = state;
+        const Model& m = model;
+        const bool out = !out_dir.empty();
+        const bool ck = out && checkpoint_every > 0;
+        // the strain energy (a log per triangle) only where it is read: the first step (E_0),
+        // every 16th step (energy-balance check), output and checkpoint steps, the last step
+        // (State::need_energy; x and v are bitwise the same either way)
+        const Real t_next = s.time + s.dt;
+        s.need_energy = all_energy || s.step == 0 || (s.step + 1) % 16 == 0 ||
+                        s.step + 1 == total || s.step + 1 == target ||
+                        (out && t_next >= prog.next_output - 0.5 * s.dt) ||
+                        (ck && t_next >= next_checkpoint - 0.5 * s.dt);
+        fdem::step(m, s);
+        if (resultants) resultants->accumulate(m, s, prog.impulses);
+        const std::string warning = check_run(m, s, run, prog.energy);
+        if (!warning.empty() && warnings++ == 0) {
+            first_warning = warning;
+            if (on_warning) on_warning(first_warning);
+        }
+        const bool last = s.step == total;
+        const bool output_due = out && (s.time >= prog.next_output - 0.5 * s.dt || last);
+        const bool checkpoint_due = ck && (s.time >= next_checkpoint - 0.5 * s.dt || last);
+        const bool stop = this->stop.load(std::memory_order_relaxed) != 0;
+        // NaN/Inf check every 16 steps and before anything is written: files hold good states
+        if (s.step % 16 == 0 || output_due || checkpoint_due || stop) check_state(m, s);
+        if (output_due) write_output();
+        if (checkpoint_due) {
+            write_checkpoint_file(checkpoint_path());
+            while (next_checkpoint <= s.time + 0.5 * s.dt)
+                next_checkpoint += checkpoint_every;
+        }
+        if (stop && out && !checkpoint_due) write_checkpoint_file(checkpoint_path());
+        return stop;
+    }
+
+    void write_failure() {
+        failure = {};
+        failure_error.clear();
+        if (out_dir.empty()) return;
+        const std::string path = (fs::path(out_dir) / "failure.vtu").string();
+        try {
+            write_vtu(path, model, state);
+            failure = {path, state.step, state.time};
+        } catch (const std::exception& e) {
+            failure_error = e.what();
+        }
+    }
+};
+
+Simulation::Simulation(Scenario scenario)
+    : impl_(std::make_unique<Impl>(std::move(scenario.path), std::move(scenario.model),
+                                   std::move(scenario.run))) {}
+
+namespace {
+RunSettings with_dt(const Model& m, RunSettings run, const std::string& name) {
+    TriId tri = kNone;
+    const Real stable = stable_time_step(m, &tri);
+    run.stable_dt = stable;
+    run.limiting_tri = tri;
+    if (run.dt > 0 && std::isfinite(run.dt)) return run;
+    if (!std::isfinite(stable) || !(run.dt_fraction > 0)) {
+        throw InputError({name, 0, 0}, "dt",
+                         "no dt given and none can be chosen: no stable time step limit (no body "
+                         "moves and contact is off) or dt_fraction <= 0; give dt in s");
+    }
+    run.dt = run.dt_fraction * stable;
+    run.dt_auto = true;
+    return run;
+}
+}  // namespace
+
+Simulation::Simulation(Model model, RunSettings run, std::string name) {
+    RunSettings r = with_dt(model, std::move(run), name);
+    impl_ = std::make_unique<Impl>(std::move(name), std::move(model), std::move(r));
+}
+
+Simulation Simulation::from_file(const std::string& path) {
+    return Simulation(load_scenario(path));
+}
+
+Simulation::~Simulation() = default;
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+
+const Model& Simulation::model() const {
+    return impl_->model;
+}
+const State& Simulation::state() const {
+    return impl_->state;
+}
+State& Simulation::state() {
+    return impl_->state;
+}
+const RunSettings& Simulation::settings() const {
+    return impl_->run;
+}
+RunSettings& Simulation::settings() {
+    return impl_->run;
+}
+const std::string& Simulation::name() const {
+    return impl_->name;
+}
+
+void Simulation::open_output(const std::string& dir, const std::string& origin) {
+    Impl& I = *impl_;
+    const fs::path out = dir.empty() ? I.run.output.dir : dir;
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec) {
+        throw InputError(
+            {I.name, 0, 0}, "output.dir",
+            fmt::format("cannot create output folder '{}': {}", out.string(), ec.message()));
+    }
+    {
+        // a folder that exists but cannot be written is an input problem, found before step 0
+        const fs::path probe = out / ".fdem_write_test";
+        std::FILE* f = std::fopen(probe.c_str(), "w");
+        const int err = errno;
+        if (f == nullptr) {
+            throw InputError({origin.empty() ? I.name : origin, 0, 0}, "output.dir",
+                             fmt::format("cannot write into the output folder '{}': {}; expected "
+                                         "a writable folder ([output] dir or --out)",
+                                         out.string(), std::strerror(err)));
+        }
+        std::fclose(f);
+        fs::remove(probe, ec);
+    }
+    I.close_writers();
+    I.out_dir = out.string();
+    I.run.output.dir = I.out_dir;
+}
+
+bool Simulation::output_open() const {
+    return !impl_->out_dir.empty();
+}
+const std::string& Simulation::output_dir() const {
+    return impl_->out_dir;
+}
+int64_t Simulation::frames_written() const {
+    return impl_->prog.frame;
+}
+const WrittenFile& Simulation::last_frame() const {
+    return impl_->last_frame;
+}
+const WrittenFile& Simulation::last_checkpoint() const {
+    return impl_->last_checkpoint;
+}
+
+void Simulation::set_checkpoint_every(Real seconds) {
+    if (!(seconds >= 0) || !std::isfinite(seconds)) {
+        throw std::invalid_argument("set_checkpoint_every: expected seconds >= 0");
+    }
+    impl_->checkpoint_every = seconds;
+    impl_->next_checkpoint = impl_->state.time + seconds;
+}
+
+std::string Simulation::checkpoint_path() const {
+    return impl_->checkpoint_path();
+}
+
+void Simulation::save_checkpoint(const std::string& path) {
+    impl_->write_checkpoint_file(path);
+}
+
+void Simulation::restore_checkpoint(const std::string& path) {
+    Impl& I = *impl_;
+    State s = make_state(I.model, I.state.dt);
+    RunProgress prog;
+    read_checkpoint(path, I.model, s, prog);
+    // copy-assignment keeps the storage of the equally sized arrays (x, v, f, ...): views of
+    // them stay valid
+    I.state = s;
+    I.prog = std::move(prog);
+    I.restarted = true;
+    I.restart_from = fs::absolute(fs::path(path)).parent_path().string();
+    I.close_writers();
+    I.next_checkpoint = I.state.time + I.checkpoint_every;
+}
+
+int64_t Simulation::steps_to(Real t) const {
+    return impl_->steps_to(t);
+}
+
+void Simulation::step() {
+    Impl& I = *impl_;
+    I.ensure_writers();
+    try {
+        I.advance(I.steps_to(I.run.end_time), I.state.step + 1, true);
+    } catch (const SimulationError&) {
+        I.write_failure();
+        throw;
+    }
+}
+
+RunResult Simulation::run(Real until, const StepCallback& callback, int64_t every) {
+    if (every < 1) throw std::invalid_argument("Simulation::run: every must be >= 1");
+    Impl& I = *impl_;
+    struct ClearStop {
+        std::atomic<int>& flag;
+        ~ClearStop() { flag.store(0, std::memory_order_relaxed); }
+    } clear_stop{I.stop};
+    I.ensure_writers();
+    State& s = I.state;
+    const int64_t total = I.steps_to(I.run.end_time);
+    const int64_t target = I.steps_to(until);
+    RunResult res;
+    try {
+        while (s.step < target) {
+            const bool stop = I.advance(total, target, false);
+            ++res.steps;
+            if (stop) {
+                res.status = RunStatus::Stopped;
+                break;
+            }
+            if (callback && s.step % every == 0 && !callback(*this)) {
+                res.status = RunStatus::CallbackStopped;
+                break;
+            }
+        }
+    } catch (const SimulationError&) {
+        I.write_failure();
+        throw;
+    }
+    return res;
+}
+
+RunResult Simulation::run_to_end(const StepCallback& callback, int64_t every) {
+    return run(impl_->run.end_time, callback, every);
+}
+
+void Simulation::request_stop() noexcept {
+    impl_->stop.store(1, std::memory_order_relaxed);
+}
+
+void Simulation::check() const {
+    check_state(impl_->model, impl_->state);
+}
+const EnergyMonitor& Simulation::energy_monitor() const {
+    return impl_->prog.energy;
+}
+const std::string& Simulation::first_warning() const {
+    return impl_->first_warning;
+}
+int64_t Simulation::warnings() const {
+    return impl_->warnings;
+}
+
+void Simulation::set_notice_handler(std::function<void(const std::string&)> handler) {
+    impl_->on_notice = std::move(handler);
+}
+
+void Simulation::set_warning_handler(std::function<void(const std::string&)> handler) {
+    impl_->on_warning = std::move(handler);
+}
+
+const WrittenFile& Simulation::failure_file() const {
+    return impl_->failure;
+}
+const std::string& Simulation::failure_write_error() const {
+    return impl_->failure_error;
+}
+uint64_t Simulation::state_hash() const {
+    return fdem::state_hash(impl_->state);
+}
+
+}  // namespace fdem
