@@ -106,16 +106,7 @@ TEST(CompositeScenario, ElementMustBeAString) {
 }
 
 std::string mesh_error(const std::string& name, const std::string& text) {
-    const std::string path =
-        std::filesystem::path(::testing::TempDir() + "/" + name).lexically_normal().string();
-    std::ofstream(path) << text;
-    try {
-        read_mesh(path);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError for " << name;
-    return {};
+    return support::mesh_error(support::write_temp(name, text));
 }
 
 // unit square as one 3-node and one 6-node triangle in two elementary entities (MSH 2.2;

@@ -9,6 +9,7 @@
 #include "fdem/error.hpp"
 #include "fdem/mesh.hpp"
 #include "fdem/scenario.hpp"
+#include "support/input_errors.hpp"
 
 namespace fdem {
 namespace {
@@ -16,23 +17,8 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-std::string write_temp(const std::string& name, const std::string& text) {
-    // normalized, as the scenario reader shows paths (TempDir() ends with a slash)
-    const std::string path =
-        std::filesystem::path(::testing::TempDir() + "/" + name).lexically_normal().string();
-    std::ofstream(path) << text;
-    return path;
-}
-
-std::string mesh_error(const std::string& path, Real size = 0) {
-    try {
-        read_mesh(path, size);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError for " << path;
-    return {};
-}
+using support::mesh_error;
+using support::write_temp;
 
 /// A one-body scenario around a mesh file given by absolute path.
 std::string scenario_error(const std::string& mesh, const std::string& extra = "") {

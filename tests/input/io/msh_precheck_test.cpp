@@ -17,6 +17,7 @@
 
 #include "fdem/error.hpp"
 #include "fdem/mesh.hpp"
+#include "support/input_errors.hpp"
 
 namespace fdem {
 namespace {
@@ -25,21 +26,11 @@ using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
 std::string write_temp(const std::string& name, const std::string& bytes) {
-    const std::string path = std::filesystem::path(::testing::TempDir() + "/precheck_" + name)
-                                 .lexically_normal()
-                                 .string();
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
+    return support::write_temp("precheck_" + name, bytes);
 }
 
 std::string mesh_error(const std::string& path) {
-    try {
-        read_mesh(path, 0);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError for " << path;
-    return {};
+    return support::mesh_error(path);
 }
 
 /// "path:line: error: malformed mesh file 'path': " for an error on line `line`.

@@ -11,6 +11,7 @@
 
 #include "fdem/error.hpp"
 #include "fdem/scenario.hpp"
+#include "support/input_errors.hpp"
 
 namespace fdem {
 namespace {
@@ -18,10 +19,7 @@ namespace {
 using ::testing::HasSubstr;
 
 std::string write_temp(const std::string& name, const std::string& text) {
-    const std::string path =
-        std::filesystem::path(::testing::TempDir() + "/robust_" + name).lexically_normal().string();
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
+    return support::write_temp("robust_" + name, text);
 }
 
 /// A one-body scenario around mesh (absolute path), plus extra TOML.
@@ -41,13 +39,7 @@ mesh = ")" +
 }
 
 std::string error_of(const std::string& text) {
-    try {
-        load_scenario_from_string(text, "bad.toml", ".");
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError for:\n" << text;
-    return {};
+    return support::scenario_error(text, ".");
 }
 
 // MSH 2.2 with the given nodes ("id x y z" lines) and triangles ("n1 n2 n3" lines)

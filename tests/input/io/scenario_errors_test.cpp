@@ -10,6 +10,7 @@
 
 #include "fdem/error.hpp"
 #include "fdem/scenario.hpp"
+#include "support/input_errors.hpp"
 
 namespace fdem {
 namespace {
@@ -44,13 +45,7 @@ fix = ["x", "y"]
 
 /// kBase with the first occurrence of `from` replaced by `to`.
 std::string edit(const std::string& from, const std::string& to) {
-    std::string s = kBase;
-    const size_t p = s.find(from);
-    EXPECT_NE(p, std::string::npos) << from;
-    if (p != std::string::npos) {
-        s.replace(p, from.size(), to);
-    }
-    return s;
+    return support::replace_first(kBase, from, to);
 }
 
 /// The InputError thrown for text ("bad.toml", meshes from tests/data), or nullopt.
@@ -65,12 +60,7 @@ std::optional<InputError> error_of(const std::string& text) {
 
 /// what() of the InputError thrown for text; a test failure if nothing is thrown.
 std::string what_of(const std::string& text) {
-    const auto e = error_of(text);
-    if (!e) {
-        ADD_FAILURE() << "no InputError for:\n" << text;
-        return {};
-    }
-    return e->what();
+    return support::scenario_error(text);
 }
 
 TEST(ScenarioErrors, BaseScenarioIsValid) {

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "fdem/error.hpp"
 #include "fdem/scenario.hpp"
@@ -50,12 +51,7 @@ fix = ["x", "y"]
 
 /// kBase with the first occurrence of `from` replaced by `to`.
 std::string edit(const std::string& from, const std::string& to, std::string s = kBase) {
-    const size_t p = s.find(from);
-    EXPECT_NE(p, std::string::npos) << from;
-    if (p != std::string::npos) {
-        s.replace(p, from.size(), to);
-    }
-    return s;
+    return support::replace_first(std::move(s), from, to);
 }
 
 // Two bodies of block_on_base.geo (a block 1 cm above a base), contact as given by `contact`.
@@ -90,12 +86,7 @@ material = "rock"
            contact;
 }
 
-std::string write_temp(const std::string& name, const std::string& text) {
-    const std::string path =
-        std::filesystem::path(::testing::TempDir() + "/" + name).lexically_normal().string();
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-}
+using support::write_temp;
 
 struct CliResult {
     int code = -1;
