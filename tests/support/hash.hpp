@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <vector>
 
 #include "fdem/build.hpp"
@@ -13,18 +14,20 @@
 
 namespace fdem::scenes {
 
+/// FNV-1a over the n bytes at p, continuing from h (the offset basis to start a hash).
+inline uint64_t fnv1a(const unsigned char* p, size_t n, uint64_t h = 1469598103934665603ull) {
+    for (size_t i = 0; i < n; ++i) {
+        h ^= p[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
 /// FNV-1a over the raw bytes of x and v: equal hashes mean bitwise equal positions and velocities.
 inline uint64_t state_hash(const State& s) {
     uint64_t h = 1469598103934665603ull;
-    auto mix = [&h](const std::vector<Vec2>& a) {
-        const auto* p = reinterpret_cast<const unsigned char*>(a.data());
-        for (size_t i = 0; i < a.size() * sizeof(Vec2); ++i) {
-            h ^= p[i];
-            h *= 1099511628211ull;
-        }
-    };
-    mix(s.x);
-    mix(s.v);
+    for (const std::vector<Vec2>* a : {&s.x, &s.v})
+        h = fnv1a(reinterpret_cast<const unsigned char*>(a->data()), a->size() * sizeof(Vec2), h);
     return h;
 }
 

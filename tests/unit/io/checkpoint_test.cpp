@@ -18,6 +18,7 @@
 #include "fdem/scenario.hpp"
 #include "fdem/simulate.hpp"
 #include "fdem/version.hpp"
+#include "support/hash.hpp"
 #include "support/scenes.hpp"
 
 namespace fdem {
@@ -75,18 +76,9 @@ void write_bytes(const std::string& path, const std::vector<unsigned char>& b) {
         .write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
 }
 
-/// FNV-1a, as the checkpoint trailer (to forge files with a valid checksum).
-uint64_t fnv(const unsigned char* p, size_t n) {
-    uint64_t h = 1469598103934665603ull;
-    for (size_t i = 0; i < n; ++i) {
-        h ^= p[i];
-        h *= 1099511628211ull;
-    }
-    return h;
-}
-
+/// The checkpoint trailer is FNV-1a of the bytes before it (to forge files with a valid checksum).
 void fix_trailer(std::vector<unsigned char>& b) {
-    const uint64_t h = fnv(b.data(), b.size() - 8);
+    const uint64_t h = scenes::fnv1a(b.data(), b.size() - 8);
     std::memcpy(b.data() + b.size() - 8, &h, 8);
 }
 
