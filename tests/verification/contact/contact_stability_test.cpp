@@ -22,8 +22,8 @@ namespace {
 
 // A 0.2 m x 0.1 m block lying at zero depth on a fixed 2 m x 0.1 m slab (Gmsh, mesh size
 // 0.04 m), rock E = 0.1 GPa, gravity, no friction, no damping; dt = "auto" with dt_fraction
-// given or (empty) the default.
-Scenario resting_block(const std::string& dt_fraction) {
+// given or (empty) the default; contact_extra adds [contact] keys (e.g. edge_targets = false).
+Scenario resting_block(const std::string& dt_fraction, const std::string& contact_extra = "") {
     const std::string text = R"(
 [simulation]
 end_time = 0.4
@@ -50,7 +50,7 @@ group = "block"
 material = "rock"
 [contact]
 algorithm = "smooth"
-)";
+)" + contact_extra + "\n";
     return load_scenario_from_string(text, "resting_block.toml", FDEM_TEST_DATA_DIR);
 }
 
@@ -120,27 +120,49 @@ Real balance_error(const Model& m, Real dt) {
     return err / scale;
 }
 
+/// 2 / omega_max of the block settled into contact at a small step, and the bounds.
+struct Limits {
+    Real dt_e, dt_c, stable, dt_true;
+};
+Limits measure_limits(const Model& m, const char* what) {
+    Limits l{element_stable_time_step(m), contact_stable_dt(m), stable_time_step(m), 0};
+    State s = make_state(m, 0.1 * l.dt_c);
+    for (int k = 0; k < 1000; ++k)
+        step(m, s);
+    EXPECT_GT(s.contact.active_contacts, 5);
+    l.dt_true = 2.0 / omega_max(m, s);
+    std::printf(
+        "%s: element bound %.4e s, contact bound %.4e s (%.3f of the true limit), combined "
+        "%.4e s (%.3f), 2/omega_max %.4e s\n",
+        what, l.dt_e, l.dt_c, l.dt_c / l.dt_true, l.stable, l.stable / l.dt_true, l.dt_true);
+    return l;
+}
+
+// The paper's node-only targets: eq. 6.15 alone is close to the true limit (0.90 measured), and
+// the combined bound (eq. 6.17) is below it.
+TEST(ContactStability, NodeTargetsBoundIsCloseToTheTrueLimit) {
+    const Scenario sc = resting_block("", "edge_targets = false");
+    const Limits l = measure_limits(sc.model, "node targets");
+    EXPECT_LT(l.stable, l.dt_true);
+    EXPECT_GT(l.dt_c / l.dt_true, 0.8);
+    EXPECT_LT(l.dt_c / l.dt_true, 1.1);
+}
+
+// Edge targets (the default, theory §6.12): the bound of eq. 6.15 with target_dt_factor is safe
+// but more conservative (0.77 of the true limit on this block: the factor covers the worst
+// node/midpoint share, docs/theory.md §6.12); the combined bound is safe.
 TEST(ContactStability, PrintedBoundIsBelowTheTrueLimitAndTheDefaultStepConserves) {
     const Scenario sc = resting_block("");
     const Model& m = sc.model;
     const Real dt_e = element_stable_time_step(m), dt_c = contact_stable_dt(m);
-    const Real stable = stable_time_step(m);
-    EXPECT_EQ(sc.run.stable_dt, stable);
-    // settle into contact at a small step, then measure at that state
-    State s = make_state(m, 0.1 * dt_c);
-    for (int k = 0; k < 1000; ++k)
-        step(m, s);
-    ASSERT_GT(s.contact.active_contacts, 5);
-    const Real dt_true = 2.0 / omega_max(m, s);
-    std::printf(
-        "element bound %.4e s, contact bound %.4e s (%.3f of the true limit), combined %.4e s "
-        "(%.3f), 2/omega_max %.4e s\n",
-        dt_e, dt_c, dt_c / dt_true, stable, stable / dt_true, dt_true);
-    // the combined bound (eq. 6.17) is safe; the contact bound of eq. 6.15 alone is close to the
-    // true limit (it ignores the element stiffness of the same nodes)
-    EXPECT_LT(stable, dt_true);
-    EXPECT_GT(dt_c / dt_true, 0.8);
-    EXPECT_LT(dt_c / dt_true, 1.1);
+    EXPECT_EQ(sc.run.stable_dt, stable_time_step(m));
+    const Limits l = measure_limits(m, "edge targets");
+    // both bounds are safe. No closeness check here: target_dt_factor (4/3 for a node next to
+    // midpoints) is a worst case, and on this block the true limit with edge targets is larger
+    // than with nodes only while the bound is smaller (measured 0.770 of the true limit against
+    // 0.913 with node targets; the step is ~16 % shorter than it needs to be: issue #16)
+    EXPECT_LT(l.stable, l.dt_true);
+    EXPECT_LT(l.dt_c, l.dt_true);
 
     // energy: the default step min(0.5 dt_e, 0.2 dt_c) (theory §6.9) against the old default
     // 0.5 x stable, where the undamped contact vibration gains energy
