@@ -20,8 +20,14 @@ constexpr const char* kColumns[] = {"ux",        "uy",        "vx",
 std::string BodiesWriter::header(const Resultants& r) {
     std::string h = "step,time";
     for (int32_t k = 0; k < r.num_sets(); ++k) {
-        for (const char* c : kColumns)
-            h += "," + csv_field(r.name(k) + "." + c);
+        for (const char* c : kColumns) {
+            // appended piecewise: "," + std::string trips GCC 12's false -Wrestrict
+            std::string name = r.name(k);
+            name += '.';
+            name += c;
+            h += ',';
+            h += csv_field(name);
+        }
     }
     return h;
 }

@@ -11,8 +11,14 @@ namespace fdem {
 std::string ProbesWriter::header(const std::vector<ProbeSpec>& probes) {
     std::string h = "step,time";
     for (const ProbeSpec& p : probes) {
-        for (const char* c : {"x", "y", "vx", "vy", "sxx", "syy", "sxy"})
-            h += "," + csv_field(p.name + "." + c);
+        for (const char* c : {"x", "y", "vx", "vy", "sxx", "syy", "sxy"}) {
+            // appended piecewise: "," + std::string trips GCC 12's false -Wrestrict
+            std::string name = p.name;
+            name += '.';
+            name += c;
+            h += ',';
+            h += csv_field(name);
+        }
     }
     return h;
 }

@@ -40,7 +40,9 @@ std::string cli_hash(const std::string& scenario, Real end_time, const std::stri
     char buf[256];
     while (p != nullptr && std::fgets(buf, sizeof buf, p) != nullptr)
         text += buf;
-    if (p != nullptr) EXPECT_EQ(pclose(p), 0) << cmd;
+    if (p != nullptr) {
+        EXPECT_EQ(pclose(p), 0) << cmd;
+    }
     return text;
 }
 
