@@ -40,9 +40,8 @@ void BM_NarrowPhase(benchmark::State& st) {
     // pairs that pass the body-box reject (contact.cpp body_boxes()) and run the locate test
     int64_t survivors = 0;
     for (size_t p = 0; p < s.contact.cand.node.size(); ++p) {
-        survivors +=
-            !box_rejects(s.contact.body_box[s.contact.cand.body[p]],
-                        target_point(m.contact, s.x.data(), s.contact.cand.node[p]));
+        survivors += !box_rejects(s.contact.body_box[s.contact.cand.body[p]],
+                                  target_point(m.contact, s.x.data(), s.contact.cand.node[p]));
     }
     st.counters["box_pass"] = static_cast<double>(survivors) / pairs;
     st.counters["sub_tris"] = m.contact.num_sub_tris();

@@ -103,11 +103,10 @@ void print_summary(const fdem::Scenario& sc) {
             what += fmt::format(" on {} edge(s), {:.4g} m", ld.edges.size(), length);
         }
         const fdem::TimeFunction& tf = ld.time_function;
-        const std::string when =
-            tf.kind == fdem::TimeFunction::Kind::Constant ? "constant"
-            : tf.kind == fdem::TimeFunction::Kind::Ramp
-                ? fmt::format("ramp over {:g} s", tf.ramp_time)
-                : fmt::format("table of {} points", tf.table.size());
+        const std::string when = tf.kind == fdem::TimeFunction::Kind::Constant ? "constant"
+                                 : tf.kind == fdem::TimeFunction::Kind::Ramp
+                                     ? fmt::format("ramp over {:g} s", tf.ramp_time)
+                                     : fmt::format("table of {} points", tf.table.size());
         fmt::print("load       {}: {}, {}\n", ld.name, what, when);
     }
     if (sc.run.limiting_tri != fdem::kNone) {
@@ -124,12 +123,11 @@ void print_summary(const fdem::Scenario& sc) {
     fmt::print("memory     {:.2f} MB (model + state, estimate)\n", memory_estimate(m) / 1e6);
 
     // contact: which algorithm and why; which bodies it sees (two fixed bodies never interact)
-    const char* alg = m.contact.algorithm == fdem::ContactAlgorithm::Smooth ? "smooth"
-                      : m.contact.algorithm == fdem::ContactAlgorithm::LegacyTriangle
-                          ? "legacy-triangle"
-                      : m.contact.algorithm == fdem::ContactAlgorithm::LegacyBoundary
-                          ? "legacy-boundary"
-                          : "none";
+    const char* alg =
+        m.contact.algorithm == fdem::ContactAlgorithm::Smooth           ? "smooth"
+        : m.contact.algorithm == fdem::ContactAlgorithm::LegacyTriangle ? "legacy-triangle"
+        : m.contact.algorithm == fdem::ContactAlgorithm::LegacyBoundary ? "legacy-boundary"
+                                                                        : "none";
     const size_t movable = m.bodies.size() - fixed;
     const bool on = m.contact.algorithm != fdem::ContactAlgorithm::None;
     std::string why;
@@ -152,23 +150,25 @@ void print_summary(const fdem::Scenario& sc) {
         for (fdem::NodeId n = body.node_begin; n < body.node_end; ++n)
             mass += m.node_mass[static_cast<size_t>(n)];
         const bool seen = on && m.bodies.size() >= 2 && (!body.fixed || movable > 0);
-        fmt::print("  {:>6}  \"{}\"  {}  {:.6g}  {}  {}\n", b, body.name, body.tri_end - body.tri_begin,
-                   mass, body.fixed ? "yes" : "no",
-                   seen ? "yes"
+        fmt::print("  {:>6}  \"{}\"  {}  {:.6g}  {}  {}\n", b, body.name,
+                   body.tri_end - body.tri_begin, mass, body.fixed ? "yes" : "no",
+                   seen  ? "yes"
                    : !on ? "no (contact off)"
                          : "no (nothing that moves can reach it)");
     }
     if (m.bodies.size() > kMaxRows) {
-        fmt::print("  ... {} more bodies (ids {} to {}; their names, ids and masses are in every "
-                   "VTU frame)\n",
-                   m.bodies.size() - kMaxRows, kMaxRows, m.bodies.size() - 1);
+        fmt::print(
+            "  ... {} more bodies (ids {} to {}; their names, ids and masses are in every "
+            "VTU frame)\n",
+            m.bodies.size() - kMaxRows, kMaxRows, m.bodies.size() - 1);
     }
     for (const fdem::ProbeSpec& p : sc.run.output.probes) {
         if (p.kind == fdem::ProbeSpec::Kind::Node) {
             const fdem::Vec2 x = m.node_x0[p.nodes[0]];
-            fmt::print("probe      \"{}\": node {} at ({:.6g}, {:.6g}) m, {:.3g} m from the given "
-                       "position, stress of triangle {}\n",
-                       p.name, p.nodes[0], x.x, x.y, fdem::norm(x - p.position), p.tris[0]);
+            fmt::print(
+                "probe      \"{}\": node {} at ({:.6g}, {:.6g}) m, {:.3g} m from the given "
+                "position, stress of triangle {}\n",
+                p.name, p.nodes[0], x.x, x.y, fdem::norm(x - p.position), p.tris[0]);
         } else {
             fmt::print("probe      \"{}\": mean over {} nodes and {} triangles\n", p.name,
                        p.nodes.size(), p.tris.size());

@@ -82,7 +82,7 @@ struct LegacyBoundaryTri {
 /// with the same weights.
 struct ContactModel {
     ContactAlgorithm algorithm = ContactAlgorithm::None;
-    ContactParams params;                    ///< default for every material pair
+    ContactParams params;  ///< default for every material pair
     /// law of one ordered material pair (contactor material a, target material b), set by a
     /// [[contact.pair]] entry (the reader adds both orders); pairs without one use `params`
     struct PairOverride {
@@ -90,7 +90,7 @@ struct ContactModel {
         ContactParams params;
     };
     std::vector<PairOverride> pair_overrides;  ///< only the pairs that are set (not n^2)
-    Real buffer = 0;                         ///< broad-phase skin b [m]; 0 = 0.2 h_min
+    Real buffer = 0;                           ///< broad-phase skin b [m]; 0 = 0.2 h_min
     /// true: every body is both contactor and target of every other body (spec §4.5-9).
     /// false (one-way): each pair of bodies is evaluated once. If exactly one of the two is
     /// fixed, the fixed body is the contactor and the free body's boundary nodes are the
@@ -236,9 +236,9 @@ inline bool is_contactor_for(const ContactModel& cm, BodyId c, BodyId t) {
 
 /// Resolved parameters for contactor body material a and target body material b.
 inline const ContactParams& pair_parameters(const ContactModel& cm, int32_t a, int32_t b) {
-    return cm.resolved[static_cast<size_t>(cm.material_class[static_cast<size_t>(a)] *
-                                               cm.num_classes +
-                                           cm.material_class[static_cast<size_t>(b)])];
+    return cm
+        .resolved[static_cast<size_t>(cm.material_class[static_cast<size_t>(a)] * cm.num_classes +
+                                      cm.material_class[static_cast<size_t>(b)])];
 }
 
 }  // namespace fdem

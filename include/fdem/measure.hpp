@@ -74,13 +74,13 @@ public:
 private:
     struct Set {
         std::string name;
-        std::vector<NodeId> nodes;          ///< group: its nodes; entry: empty (bodies below)
-        std::vector<BodyId> bodies;         ///< entry: its bodies, ascending
-        std::vector<NodeId> force_nodes;    ///< nodes that can carry a contact force, ascending
-        std::vector<int32_t> slots;         ///< its indices into State::bc_reaction, ascending
-        std::vector<BodyId> fixed_bodies;   ///< entry: its fixed bodies (reaction eq. 8.2)
-        std::vector<NodeId> fixed_nodes;    ///< nodes of those bodies a contact or load can act on
-        Real fixed_mass = 0;                ///< mass of those fixed bodies [kg/m]
+        std::vector<NodeId> nodes;         ///< group: its nodes; entry: empty (bodies below)
+        std::vector<BodyId> bodies;        ///< entry: its bodies, ascending
+        std::vector<NodeId> force_nodes;   ///< nodes that can carry a contact force, ascending
+        std::vector<int32_t> slots;        ///< its indices into State::bc_reaction, ascending
+        std::vector<BodyId> fixed_bodies;  ///< entry: its fixed bodies (reaction eq. 8.2)
+        std::vector<NodeId> fixed_nodes;   ///< nodes of those bodies a contact or load can act on
+        Real fixed_mass = 0;               ///< mass of those fixed bodies [kg/m]
     };
     std::vector<Set> sets_;
     int32_t num_entries_ = 0;

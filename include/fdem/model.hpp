@@ -72,8 +72,8 @@ struct TimeFunction {
         Table,     ///< piecewise linear through table (t strictly increasing), held at the ends
     };
     Kind kind = Kind::Constant;
-    Real ramp_time = 0;                       ///< [s], > 0 for Ramp
-    std::vector<std::array<Real, 2>> table;   ///< (t [s], factor [-]) pairs for Table
+    Real ramp_time = 0;                      ///< [s], > 0 for Ramp
+    std::vector<std::array<Real, 2>> table;  ///< (t [s], factor [-]) pairs for Table
     /// Factor at time t [s].
     Real at(Real t) const;
 };

@@ -12,11 +12,11 @@
 namespace fdem {
 
 struct OutputSettings {
-    Real interval = 0;        ///< simulated time between output frames [s]; 0 = 100 frames
-    bool vtu = true;          ///< write VTU frames and a PVD series
-    bool bodies = true;       ///< write bodies.csv (resultants per body entry and boundary group)
+    Real interval = 0;   ///< simulated time between output frames [s]; 0 = 100 frames
+    bool vtu = true;     ///< write VTU frames and a PVD series
+    bool bodies = true;  ///< write bodies.csv (resultants per body entry and boundary group)
     std::vector<ProbeSpec> probes;  ///< [[probe]] entries, resolved (probes.csv when not empty)
-    std::string dir = "out";  ///< output folder (relative to the working directory)
+    std::string dir = "out";        ///< output folder (relative to the working directory)
 };
 
 /// What the [checks] table does when a node passes through the contact layer.
@@ -29,8 +29,8 @@ struct CheckSettings {
 };
 
 struct RunSettings {
-    Real dt = 0;                 ///< time step [s] actually used
-    bool dt_auto = false;        ///< dt = "auto" was given
+    Real dt = 0;           ///< time step [s] actually used
+    bool dt_auto = false;  ///< dt = "auto" was given
     /// fraction of the stable limit used by dt = "auto"; without dt_fraction in the scenario,
     /// min(0.5 x element limit, 0.2 x contact limit) / stable limit (docs/theory.md §6.9)
     Real dt_fraction = 0.5;

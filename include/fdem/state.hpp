@@ -12,16 +12,16 @@ namespace fdem {
 /// Energy bookkeeping per unit thickness [J/m] (docs/theory.md §4, spec §3.5).
 /// Balance: kinetic + strain + contact - work_gravity - work_external + dissipated == const.
 struct Energy {
-    Real time = 0;                   ///< t^n at which the energies below were evaluated [s]
-    Real kinetic = 0;                ///< sum 1/2 m |v^n|^2 with v^n = (v^{n-1/2} + v^{n+1/2})/2
-    Real strain = 0;                 ///< sum A0 W(F) (stale when State::need_energy was false)
-    Real contact = 0;                ///< stored contact potential (path-independent part)
-    Real work_gravity = 0;           ///< work done by gravity since t = 0
+    Real time = 0;           ///< t^n at which the energies below were evaluated [s]
+    Real kinetic = 0;        ///< sum 1/2 m |v^n|^2 with v^n = (v^{n-1/2} + v^{n+1/2})/2
+    Real strain = 0;         ///< sum A0 W(F) (stale when State::need_energy was false)
+    Real contact = 0;        ///< stored contact potential (path-independent part)
+    Real work_gravity = 0;   ///< work done by gravity since t = 0
     Real work_external = 0;  ///< work done by prescribed-velocity supports, kicks and loads
     /// the part of the last step's support and load work that belongs after t^n, booked next step
     Real work_external_pending = 0;
-    Real dissipated_viscous = 0;     ///< material damping eta D:D and mass damping
-    Real dissipated_contact = 0;     ///< contact damping, hysteresis and friction
+    Real dissipated_viscous = 0;  ///< material damping eta D:D and mass damping
+    Real dissipated_contact = 0;  ///< contact damping, hysteresis and friction
     Real total() const {
         return kinetic + strain + contact - work_gravity - work_external + dissipated_viscous +
                dissipated_contact;

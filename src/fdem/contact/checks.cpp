@@ -199,8 +199,8 @@ std::vector<ThinLayer> find_thin_layers(const Model& m) {
                         // more than 120 degrees apart: a corner (90 degrees) is not "opposite"
                         if (dot(outward_normal(m, e), n_src) >= -0.5) opposite = false;
                         const auto& be = cm.boundary_edges[e];
-                        near = std::min(near, point_segment_distance(xo, m.node_x0[be[0]],
-                                                                     m.node_x0[be[1]]));
+                        near = std::min(
+                            near, point_segment_distance(xo, m.node_x0[be[0]], m.node_x0[be[1]]));
                     }
                 }
                 const Real d = cm.node_dist[static_cast<size_t>(o)];
@@ -224,10 +224,10 @@ std::vector<ThinLayer> find_thin_layers(const Model& m) {
 std::string thin_layer_warning(const Model& m, const ThinLayer& t) {
     const ContactModel& cm = m.contact;
     const auto& be = cm.boundary_edges[static_cast<size_t>(t.edge)];
-    const std::string node =
-        t.node < cm.num_real_nodes
-            ? fmt::format("node {}", t.node)
-            : fmt::format("virtual node {} (chord midpoint or incenter)", t.node - cm.num_real_nodes);
+    const std::string node = t.node < cm.num_real_nodes
+                                 ? fmt::format("node {}", t.node)
+                                 : fmt::format("virtual node {} (chord midpoint or incenter)",
+                                               t.node - cm.num_real_nodes);
     return fmt::format(
         "warning: body {} \"{}\" is too thin for its contact layer: in {} boundary "
         "sub-triangle(s) an inner node takes its contact distance from the opposite face, e.g. "

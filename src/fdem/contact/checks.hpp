@@ -19,12 +19,12 @@ struct InitialOverlap {
     BodyId body = kNone;   ///< the body whose point lies inside the other
     BodyId other = kNone;  ///< the body it lies inside
     Point point = Point::Node;
-    NodeId node = kNone;   ///< the boundary node, or the first node of the edge / element
-    int32_t edge = -1;     ///< Point::EdgeMidpoint: boundary edge (ContactModel::boundary_edges)
-    TriId tri = kNone;     ///< Point::Centroid: the element
-    Vec2 where;            ///< the point [m]
-    Real depth = 0;        ///< its distance to the boundary of `other` [m]
-    Real tolerance = 0;    ///< depths up to this count as touching [m]
+    NodeId node = kNone;  ///< the boundary node, or the first node of the edge / element
+    int32_t edge = -1;    ///< Point::EdgeMidpoint: boundary edge (ContactModel::boundary_edges)
+    TriId tri = kNone;    ///< Point::Centroid: the element
+    Vec2 where;           ///< the point [m]
+    Real depth = 0;       ///< its distance to the boundary of `other` [m]
+    Real tolerance = 0;   ///< depths up to this count as touching [m]
 };
 
 /// Depth up to which an overlap counts as touching: kOverlapTolerance x the smallest element
@@ -48,12 +48,12 @@ constexpr Real kThinLayerRatio = 0.99;
 /// the sub-triangle touches, and is nearer to it than to those faces.
 struct ThinLayer {
     BodyId body = kNone;
-    TriId tri = kNone;     ///< mesh element (sub_parent of the sub-triangle)
-    NodeId node = kNone;   ///< contact node id (real, or virtual >= num_real_nodes)
-    int32_t edge = -1;     ///< boundary edge that gave its distance (the far face)
-    Real dist = 0;         ///< its nodal distance [m]
-    Real near_dist = 0;    ///< its distance to the nearest face the sub-triangle touches [m]
-    int32_t count = 0;     ///< number of such sub-triangles in the body
+    TriId tri = kNone;    ///< mesh element (sub_parent of the sub-triangle)
+    NodeId node = kNone;  ///< contact node id (real, or virtual >= num_real_nodes)
+    int32_t edge = -1;    ///< boundary edge that gave its distance (the far face)
+    Real dist = 0;        ///< its nodal distance [m]
+    Real near_dist = 0;   ///< its distance to the nearest face the sub-triangle touches [m]
+    int32_t count = 0;    ///< number of such sub-triangles in the body
 };
 
 /// Every body with such sub-triangles, one entry per body (the one with the largest

@@ -115,10 +115,9 @@ void resolve_params(Model& m) {
         const Real e = std::min(m.materials[static_cast<size_t>(o.a)].youngs_modulus,
                                 m.materials[static_cast<size_t>(o.b)].youngs_modulus);
         cm.resolved[k] = resolve(o.params, e);
-        check_params(cm.resolved[k],
-                     fmt::format(" of materials \"{}\" / \"{}\"",
-                                 m.materials[static_cast<size_t>(o.a)].name,
-                                 m.materials[static_cast<size_t>(o.b)].name));
+        check_params(cm.resolved[k], fmt::format(" of materials \"{}\" / \"{}\"",
+                                                 m.materials[static_cast<size_t>(o.a)].name,
+                                                 m.materials[static_cast<size_t>(o.b)].name));
     }
 }
 
