@@ -264,35 +264,27 @@ TEST(ContactCollision, NoReallocationAfterWarmUp) {
     for (int n = 0; n < 500; ++n)
         step(m, s);
     const ContactState& c = s.contact;
-    const std::vector<const void*> before = {c.cand.node.data(),
-                                             c.cand.body.data(),
-                                             c.cand.begin.data(),
-                                             c.cand.tri.data(),
-                                             c.broad.tri_center.data(),
-                                             c.broad.tri_radius.data(),
-                                             c.broad.tri_cell.data(),
-                                             c.broad.cell_start.data(),
-                                             c.broad.cell_items.data(),
-                                             c.broad.query.data(),
-                                             c.in_contact.data(),
-                                             c.xv.data(),
-                                             c.vv.data()};
+    // the storage of every contact buffer
+    auto buffers = [&c] {
+        return std::vector<const void*>{c.cand.node.data(),
+                                        c.cand.body.data(),
+                                        c.cand.begin.data(),
+                                        c.cand.tri.data(),
+                                        c.broad.tri_center.data(),
+                                        c.broad.tri_radius.data(),
+                                        c.broad.tri_cell.data(),
+                                        c.broad.cell_start.data(),
+                                        c.broad.cell_items.data(),
+                                        c.broad.query.data(),
+                                        c.in_contact.data(),
+                                        c.xv.data(),
+                                        c.vv.data()};
+    };
+    const std::vector<const void*> before = buffers();
     const int64_t rebuilds = c.rebuilds;
     for (int n = 0; n < 3000; ++n)
         step(m, s);
-    const std::vector<const void*> after = {c.cand.node.data(),
-                                            c.cand.body.data(),
-                                            c.cand.begin.data(),
-                                            c.cand.tri.data(),
-                                            c.broad.tri_center.data(),
-                                            c.broad.tri_radius.data(),
-                                            c.broad.tri_cell.data(),
-                                            c.broad.cell_start.data(),
-                                            c.broad.cell_items.data(),
-                                            c.broad.query.data(),
-                                            c.in_contact.data(),
-                                            c.xv.data(),
-                                            c.vv.data()};
+    const std::vector<const void*> after = buffers();
     EXPECT_GT(c.rebuilds, rebuilds);  // the broad phase did run again
     EXPECT_EQ(before, after);
     // the two active-pair buffers swap every step; their capacity was reserved at start
