@@ -8,7 +8,8 @@
 
 namespace fdem {
 
-/// A fresh state at t = 0: x = X, v = initial velocities, contact history empty.
+/// A fresh state at t = 0: x = X, v = initial velocities, contact history empty, the support
+/// controls (State::bc_velocity, bc_enabled) equal to the Model's.
 State make_state(const Model& m, Real dt);
 
 /// Advance one central-difference step (docs/theory.md §5):

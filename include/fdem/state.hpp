@@ -43,6 +43,18 @@ struct State {
     /// support and for nodes of fixed bodies (their reaction: Resultants, measure.hpp)
     std::vector<Vec2> bc_reaction;
 
+    /// Controls (MuJoCo's ctrl): the only inputs a caller may change between steps. One entry per
+    /// Model::bcs[k], initialised by make_state() from the Model and saved in checkpoints.
+    /// bc_velocity[k]: the velocity support k prescribes from the next step on [m/s] (only the
+    /// components the support holds, has_x / has_y, are used). bc_enabled[k]: 1 = active inside
+    /// the support's [start, end) window, 0 = switched off (its nodes move freely). A change
+    /// books its work like a support switching on or off at a window boundary (theory §4).
+    /// Before the first step, the enabled supports active at t = dt/2 also set the prescribed
+    /// components of v^0 (make_state() did so with the Model's values), so E_0 contains them; a
+    /// support switched off before the first step leaves v^0 as make_state() set it.
+    std::vector<Vec2> bc_velocity;
+    std::vector<uint8_t> bc_enabled;
+
     Energy energy;
     std::vector<Vec2> scratch_bc_v;  ///< v^{n-1/2}, then x^n, of supported nodes (step() scratch)
     /// force of each load slot (Load::slot_begin) at t^n: per edge the force on each of its two

@@ -7,6 +7,7 @@
 //      + the load forces of step 0
 //   5. gravity and mass-proportional damping
 //   6. central difference: v^{n+1/2} = v^{n-1/2} + dt f/m; prescribed components overwrite v
+//      (the controls State::bc_velocity / bc_enabled, theory §4.3)
 //   7. energy accounting at t^n; x^{n+1} = x^n + dt v^{n+1/2}
 //   8. failure checks (inverted element from step 3, NaN)
 //
@@ -39,6 +40,24 @@ constexpr NodeId kMinParallelNodes = 4 * kNodeBlock;
 /// Partial sums per node block in State::scratch_sums: kinetic2, gravity work, damping power.
 constexpr size_t kNodeSlots = 3;
 
+// A support active at t = 0 imposes its velocity from the start: it is the initial velocity of
+// its nodes, so E_0 contains their kinetic energy (theory §4; otherwise the jump from v0 to the
+// prescribed value in the first half step would be unaccounted work). Called by make_state() and
+// again by the first step, so controls changed in between set v^0 too (theory §4.3).
+void apply_initial_supports(const Model& m, State& s) {
+    const Real tm = 0.5 * s.dt;
+    for (size_t k = 0; k < m.bcs.size(); ++k) {
+        const BoundaryCondition& bc = m.bcs[k];
+        if (!s.bc_enabled[k] || !(bc.start <= tm && tm < bc.end)) continue;
+        const Vec2 vel = s.bc_velocity[k];
+        for (NodeId i : bc.nodes) {
+            if (m.node_inv_mass[i] == 0) continue;
+            if (bc.has_x) s.v[i].x = vel.x;
+            if (bc.has_y) s.v[i].y = vel.y;
+        }
+    }
+}
+
 }  // namespace
 
 State make_state(const Model& m, Real dt) {
@@ -50,17 +69,12 @@ State make_state(const Model& m, Real dt) {
     for (NodeId i = 0; i < m.num_nodes(); ++i) {
         if (m.bodies[m.node_body[i]].fixed) s.v[i] = {};
     }
-    // a support active at t = 0 imposes its velocity from the start: it is the initial velocity
-    // of its nodes, so E_0 contains their kinetic energy (theory §4; otherwise the jump from v0
-    // to the prescribed value in the first half step would be unaccounted work)
-    for (const BoundaryCondition& bc : m.bcs) {
-        if (!(bc.start <= 0.5 * dt && 0.5 * dt < bc.end)) continue;
-        for (NodeId i : bc.nodes) {
-            if (m.node_inv_mass[i] == 0) continue;
-            if (bc.has_x) s.v[i].x = bc.velocity.x;
-            if (bc.has_y) s.v[i].y = bc.velocity.y;
-        }
-    }
+    // controls (State::bc_velocity, bc_enabled): the Model's values until a caller changes them
+    s.bc_velocity.resize(m.bcs.size());
+    for (size_t k = 0; k < m.bcs.size(); ++k)
+        s.bc_velocity[k] = m.bcs[k].velocity;
+    s.bc_enabled.assign(m.bcs.size(), 1);
+    apply_initial_supports(m, s);
     s.f.assign(m.node_x0.size(), Vec2{});
     s.f_contact.assign(m.node_x0.size(), Vec2{});
     size_t n_bc = 0;
@@ -170,6 +184,7 @@ void step(const Model& m, State& s) {
     Vec2* v = s.v.data();
     Vec2* f = s.f.data();
     const bool first = s.step == 0;
+    if (first) apply_initial_supports(m, s);  // controls changed since make_state()
 
     // 0. load forces F^n on x^n, and the half of their trapezoidal work over [x^{n-1}, x^n]
     // that F^n does: 1/2 F^n . dt v^{n-1/2} (theory eq. 4.7), with v^{n-1/2} before any kick
@@ -270,8 +285,12 @@ void step(const Model& m, State& s) {
     {
         size_t k = 0;
         const Real tm = s.time + 0.5 * dt;
-        for (const BoundaryCondition& bc : m.bcs) {
-            const bool active = tm >= bc.start && tm < bc.end;
+        for (size_t b = 0; b < m.bcs.size(); ++b) {
+            const BoundaryCondition& bc = m.bcs[b];
+            // the controls (State::bc_enabled, bc_velocity) as of this step: a change books its
+            // work like a window boundary of the support (theory §4.3)
+            const bool active = s.bc_enabled[b] && tm >= bc.start && tm < bc.end;
+            const Vec2 vel = s.bc_velocity[b];
             for (NodeId i : bc.nodes) {
                 const size_t slot = k++;
                 const Vec2 v_old = s.scratch_bc_v[slot];
@@ -280,8 +299,8 @@ void step(const Model& m, State& s) {
                 const Real mi = m.node_mass[i];
                 const Vec2 v_free = v[i];
                 Vec2 v_new = v_free;
-                if (bc.has_x) v_new.x = bc.velocity.x;
-                if (bc.has_y) v_new.y = bc.velocity.y;
+                if (bc.has_x) v_new.x = vel.x;
+                if (bc.has_y) v_new.y = vel.y;
                 const Vec2 reaction = (mi / dt_v) * (v_new - v_free);
                 const Vec2 vn_free = first ? v_old : 0.5 * (v_old + v_free);
                 const Vec2 vn = first ? v_old : 0.5 * (v_old + v_new);

@@ -146,6 +146,8 @@ void put_state(Sink& o, const State& s) {
     put(o, s.energy);
     put(o, s.next_kick);
     put(o, s.need_energy);
+    put(o, s.bc_velocity);  // controls (since format 6)
+    put(o, s.bc_enabled);
     // scratch_bc_v, scratch_sums: rewritten before being read in every step (not saved)
 
     const ContactState& c = s.contact;
@@ -495,6 +497,11 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     r.get(s.need_energy);
     if (s.step < 0 || s.next_kick < 0 || s.next_kick > static_cast<int32_t>(m.kicks.size())) {
         r.fail("step or kick counter out of range (corrupt file)");
+    }
+    r.get_sized(s.bc_velocity, m.bcs.size(), "bc_velocity");
+    r.get_sized(s.bc_enabled, m.bcs.size(), "bc_enabled");
+    for (uint8_t e : s.bc_enabled) {
+        if (e > 1) r.fail("a support's bc_enabled is neither 0 nor 1 (corrupt file)");
     }
 
     ContactState& c = s.contact;

@@ -8,8 +8,9 @@
 // field (never raw, so padding bytes never reach the file and equal states give equal files).
 //
 // What is saved: every State field that carries information from one step to the next: step,
-// time, dt, x, v, f, f_contact, energy, next_kick and the ContactState (candidates, pair history,
-// broad-phase skin, baseline A couples with their sliding history). scratch_bc_v, bc_reaction
+// time, dt, x, v, f, f_contact, energy, next_kick, the controls (bc_velocity, bc_enabled) and the
+// ContactState (candidates, pair history, broad-phase skin, baseline A couples with their sliding
+// history). scratch_bc_v, bc_reaction
 // (rewritten by every step before bodies.csv reads it), scratch_sums,
 // ContactState::pair_out and the baseline A grid/result scratch are rewritten before they are
 // read in every step and are not saved. tests/unit/io/checkpoint_test.cpp pins the struct
@@ -29,10 +30,11 @@
 namespace fdem {
 
 /// Version of the checkpoint layout; bump it whenever the payload changes.
-constexpr uint32_t kCheckpointFormat = 5;  // 2: baseline A couples (ContactState::legacy)
+constexpr uint32_t kCheckpointFormat = 6;  // 2: baseline A couples (ContactState::legacy)
                                            // 3: Energy::work_external_pending
                                            // 4: PairHistory::f_damp
                                            // 5: RunProgress::impulses (bodies.csv)
+                                           // 6: State::bc_velocity, bc_enabled (controls)
 
 /// CLI bookkeeping that must survive a restart so output continues where it stopped.
 struct RunProgress {

@@ -232,6 +232,17 @@ TEST_F(CheckpointTest, RefusesAnotherFormatAndVersion) {
                                       "(format {})",
                                       kCheckpointFormat + 1, kCheckpointFormat)));
 
+    // a checkpoint of the previous format (5: without the controls of State) is refused too
+    b = good;
+    const uint32_t old_format = kCheckpointFormat - 1;
+    std::memcpy(b.data() + 8, &old_format, 4);
+    fix_trailer(b);
+    write_bytes(path, b);
+    EXPECT_THAT(restart_error(path, model(), dt()),
+                HasSubstr(fmt::format("checkpoint format {} is not supported by this fdem "
+                                      "(format {})",
+                                      kCheckpointFormat - 1, kCheckpointFormat)));
+
     b = good;
     b[24] = '9';  // first character of the version string
     fix_trailer(b);
@@ -264,7 +275,8 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // 1072 -> 1096: State::bc_reaction (the supports' reactions of the last step, rewritten by
     // every step before bodies.csv reads them after it) is not saved
     // 1096 -> 1120: ContactState 800 -> 824 above
-    EXPECT_EQ(sizeof(State), 1120u) << "State changed: update io/checkpoint.cpp";
+    // 1120 -> 1168: State::bc_velocity, bc_enabled (the controls), saved since format 6
+    EXPECT_EQ(sizeof(State), 1168u) << "State changed: update io/checkpoint.cpp";
 }
 
 // Loads (theory §4.1): the half of the load work that belongs after t^n travels in
@@ -350,6 +362,65 @@ TEST(CheckpointLegacy, RestartIsBitwiseIdenticalWithBaselineA) {
     EXPECT_TRUE(same_bits(ref.x, b.x));
     EXPECT_TRUE(same_bits(ref.v, b.v));
     EXPECT_EQ(std::memcmp(&ref.energy, &b.energy, sizeof(Energy)), 0);
+    fs::remove(path);
+}
+
+// The controls (State::bc_velocity, bc_enabled) are part of the state: a checkpoint written right
+// after a caller changed them restarts into a run that is bitwise the uninterrupted one.
+TEST(CheckpointControls, RestartAfterAControlChangeIsBitwise) {
+    scenes::BlockOptions o;
+    o.num_tris = 512;
+    o.clamp = true;
+    o.gravity = true;
+    Model m = scenes::make_block(o);
+    m.bcs[0].velocity = {0.05, 0.0};  // bottom edge driven in x
+    BoundaryCondition top;            // top edge held in x
+    top.name = "top";
+    top.nodes = scenes::select_nodes(m, 0, [](Vec2 p) { return p.y > 1 - 1e-12; });
+    top.has_x = true;
+    ASSERT_FALSE(top.nodes.empty());
+    m.bcs.push_back(top);
+    const Real dt = 0.5 * stable_time_step(m);
+    const int64_t n_ckpt = 100, n_total = 300;
+
+    State ref = make_state(m, dt);
+    State a = make_state(m, dt);
+    for (State* s : {&ref, &a}) {
+        while (s->step < n_ckpt)
+            step(m, *s);
+        s->bc_velocity[0] = {-0.02, 0.03};
+        s->bc_enabled[1] = 0;
+    }
+    while (ref.step < n_total)
+        step(m, ref);
+    const std::string path = temp_path("controls.fdck");
+    write_checkpoint(path, m, a, {});
+
+    State b = make_state(m, dt);  // controls as in the Model
+    RunProgress q;
+    read_checkpoint(path, m, b, q);
+    EXPECT_EQ(b.bc_velocity[0].x, -0.02);
+    EXPECT_EQ(b.bc_velocity[0].y, 0.03);
+    EXPECT_EQ(b.bc_enabled[0], 1);
+    EXPECT_EQ(b.bc_enabled[1], 0);
+    while (b.step < n_total)
+        step(m, b);
+    EXPECT_TRUE(same_bits(ref.x, b.x));
+    EXPECT_TRUE(same_bits(ref.v, b.v));
+    EXPECT_EQ(std::memcmp(&ref.energy, &b.energy, sizeof(Energy)), 0);
+    EXPECT_EQ(state_hash(ref), state_hash(b));
+
+    // the same run without the change differs (the comparison above means something)
+    State c = make_state(m, dt);
+    while (c.step < n_total)
+        step(m, c);
+    EXPECT_NE(state_hash(c), state_hash(b));
+
+    // a flag other than 0/1 is a corrupt file
+    State bad = a;
+    bad.bc_enabled[1] = 2;
+    write_checkpoint(path, m, bad, {});
+    EXPECT_THAT(restart_error(path, m, dt), HasSubstr("bc_enabled is neither 0 nor 1"));
     fs::remove(path);
 }
 
