@@ -1,7 +1,9 @@
 // The two error channels users see (style guide §4.6):
 //   InputError      - bad scenario or mesh; the CLI prints it and exits with code 2.
-//   SimulationError - the physics failed during a run (NaN, inverted element, blow-up); exit code 1.
-// Programming errors are FDEM_ASSERT (debug only) and never reach users as one of these.
+//   SimulationError - the physics failed during a run (NaN, inverted element, blow-up); exit
+//   code 1.
+// Programming errors are FDEM_ASSERT (fdem/assert.hpp: Debug and sanitizer builds) and never reach
+// users as one of these.
 #pragma once
 
 #include <cstdint>
@@ -26,7 +28,7 @@ public:
     InputError(SourceLocation loc, std::string key, std::string message,
                std::string source_line = {});
     const SourceLocation& location() const { return loc_; }
-    const std::string& key() const { return key_; }     ///< offending key or entity ("" if none)
+    const std::string& key() const { return key_; }      ///< offending key or entity ("" if none)
     const std::string& message() const { return msg_; }  ///< message without location prefix
 
 private:

@@ -9,7 +9,9 @@
 #include <fmt/format.h>
 
 #include "contact/contact.hpp"
+#include "contact/validate.hpp"
 #include "element/cst.hpp"
+#include "fdem/assert.hpp"
 #include "fdem/build.hpp"
 #include "fdem/error.hpp"
 #include "model/renumber.hpp"
@@ -75,7 +77,8 @@ void set_initial_velocity(Model& m, const Body& b, const BodyOptions& opt) {
         const Vec2 vc = opt.velocity + w * perp(c - o) + G * (c - o);
         const Real spin = w + 0.5 * (G.yx - G.xy);
         for (NodeId i = b.node_begin; i < b.node_end; ++i)
-            m.node_v0[static_cast<size_t>(i)] = vc + spin * perp(m.node_x0[static_cast<size_t>(i)] - c);
+            m.node_v0[static_cast<size_t>(i)] =
+                vc + spin * perp(m.node_x0[static_cast<size_t>(i)] - c);
         return;
     }
     for (NodeId i = b.node_begin; i < b.node_end; ++i) {
@@ -304,6 +307,10 @@ void finalize_model(Model& m) {
     }
 
     build_contact_topology(m);
+    if constexpr (kAssertsEnabled) {
+        const std::vector<std::string> bad = validate_topology(m, 1);
+        FDEM_ASSERT(bad.empty(), bad.front().c_str());
+    }
     m.element_schedule = build_element_schedule(m);
 }
 
