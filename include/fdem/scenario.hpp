@@ -2,11 +2,13 @@
 // Every key is documented in docs/scenario.md.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
 #include "fdem/error.hpp"
 #include "fdem/measure.hpp"
+#include "fdem/mesh.hpp"
 #include "fdem/model.hpp"
 
 namespace fdem {
@@ -73,8 +75,15 @@ void check_step_count(const RunSettings& run, const SourceLocation& where, const
 /// folder. Throws InputError (file:line:column, key, value, expectation) on any bad input.
 Scenario load_scenario(const std::string& path);
 
+/// Meshes given in memory, by name (e.g. built from arrays by the Python module's ModelBuilder).
+using MeshStore = std::map<std::string, MeshData>;
+
 /// Same from a string; base_dir resolves relative mesh paths; name appears in messages.
+/// meshes (optional): a [[body]] whose `mesh` value is a key of it takes that mesh instead of
+/// reading a file (as an already meshed .msh: mesh_size and the .geo limits are errors there);
+/// other values are file paths as usual.
 Scenario load_scenario_from_string(const std::string& text, const std::string& name,
-                                   const std::string& base_dir = ".");
+                                   const std::string& base_dir = ".",
+                                   const MeshStore* meshes = nullptr);
 
 }  // namespace fdem

@@ -115,6 +115,7 @@ struct LoadedMesh {
     std::string path;
     Real size = 0;
     int order = 1;  ///< 2: a .geo meshed with 6-node triangles (element = "composite")
+    bool in_memory = false;  ///< given to load_scenario_from_string, not read from a file
     MeshData data;
     std::vector<int> tri_owner;  ///< body entry using each triangle, -1 if none
 };
@@ -152,8 +153,8 @@ std::vector<std::string> group_names(const MeshData& mesh) {
 
 class ScenarioReader {
 public:
-    ScenarioReader(const SourceText& src, std::string base_dir)
-        : src_(src), base_dir_(std::move(base_dir)) {}
+    ScenarioReader(const SourceText& src, std::string base_dir, const MeshStore* memory)
+        : src_(src), base_dir_(std::move(base_dir)), memory_(memory) {}
 
     Scenario read(const toml::table& root) {
         Scenario sc;
@@ -319,6 +320,11 @@ private:
     /// order = 2 meshes a .geo with 6-node triangles; a .msh keeps the order it was written with.
     int load_mesh(const Fields& f, int order) {
         const std::string rel = f.string("mesh", std::nullopt);
+        if (memory_ != nullptr) {
+            if (const auto it = memory_->find(rel); it != memory_->end()) {
+                return load_memory_mesh(f, rel, it->second);
+            }
+        }
         const std::string path = resolve(base_dir_, rel);
         const std::string ext = fs::path(path).extension().string();
         if (ext != ".msh" && ext != ".geo") {
@@ -367,6 +373,34 @@ private:
             throw InputError(f.location("mesh_size"), f.full_key("mesh_size"),
                              fmt::format("{}: {}", f.context(), e.message()),
                              src_.line(f.location("mesh_size").line));
+        }
+        lm.tri_owner.assign(lm.data.tris.size(), -1);
+        meshes_.push_back(std::move(lm));
+        return static_cast<int>(meshes_.size() - 1);
+    }
+
+    /// mesh = "<name>" of a mesh given in memory (load_scenario_from_string's `meshes`): used as
+    /// it is, like an already meshed .msh file; its name stands for the path in messages.
+    int load_memory_mesh(const Fields& f, const std::string& name, const MeshData& data) {
+        for (const char* k : {"mesh_size", "max_triangles", "mesh_time_limit"}) {
+            if (f.has(k)) {
+                f.fail(*f.node(k), k,
+                       fmt::format("{} only applies to .geo files (mesh \"{}\" is given in "
+                                   "memory, already meshed)",
+                                   k, name));
+            }
+        }
+        for (size_t i = 0; i < meshes_.size(); ++i) {
+            if (meshes_[i].path == name && meshes_[i].in_memory) {
+                return static_cast<int>(i);
+            }
+        }
+        LoadedMesh lm;
+        lm.path = name;
+        lm.in_memory = true;
+        lm.data = data;
+        if (lm.data.file.empty()) {
+            lm.data.file = name;
         }
         lm.tri_owner.assign(lm.data.tris.size(), -1);
         meshes_.push_back(std::move(lm));
@@ -1331,6 +1365,7 @@ private:
 
     const SourceText& src_;
     std::string base_dir_;
+    const MeshStore* memory_ = nullptr;  ///< meshes given in memory (may be null)
     SourceLocation dt_loc_;
     SourceLocation end_time_loc_;
     SourceLocation interval_loc_;
@@ -1439,7 +1474,7 @@ void check_step_count(const RunSettings& run, const SourceLocation& where, const
 }
 
 Scenario load_scenario_from_string(const std::string& text, const std::string& name,
-                                   const std::string& base_dir) {
+                                   const std::string& base_dir, const MeshStore* meshes) {
     const SourceText src(name, text);
     toml::table root;
     try {
@@ -1450,7 +1485,7 @@ Scenario load_scenario_from_string(const std::string& text, const std::string& n
         throw InputError({name, line, col}, "",
                          fmt::format("TOML syntax error: {}", e.description()), src.line(line));
     }
-    ScenarioReader reader(src, base_dir);
+    ScenarioReader reader(src, base_dir, meshes);
     return reader.read(root);
 }
 

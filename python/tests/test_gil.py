@@ -1,0 +1,38 @@
+"""Y9: run() releases the GIL: Python threads keep running while C++ steps."""
+import threading
+import time
+
+import fdem
+from conftest import example
+
+
+def test_main_thread_runs_while_run_is_busy():
+    sim = fdem.Simulation.from_toml(example("03_contact_slide"))
+    # long enough to be seen (about 1 s of stepping at 1 thread)
+    steps = 3000
+    worker = threading.Thread(target=lambda: sim.run(steps=steps))
+    ticks = 0
+    t0 = time.perf_counter()
+    worker.start()
+    while worker.is_alive():
+        ticks += 1  # Python bytecode of the main thread: needs the GIL
+        time.sleep(0.002)
+    elapsed = time.perf_counter() - t0
+    worker.join()
+    assert sim.step_count == steps
+    # with the GIL held by run(), the loop above would not run until run() returned: 1-2 ticks
+    assert elapsed > 0.1, "run too short to tell"
+    assert ticks >= 0.25 * elapsed / 0.002, (ticks, elapsed)
+
+
+def test_request_stop_from_another_thread():
+    sim = fdem.Simulation.from_toml(example("03_contact_slide"))
+    result = {}
+    worker = threading.Thread(target=lambda: result.update(sim.run(until=10.0)))
+    worker.start()
+    time.sleep(0.2)
+    sim.request_stop()
+    worker.join(timeout=30)
+    assert not worker.is_alive()
+    assert result["status"] == "stopped"
+    assert 0 < sim.step_count < sim.end_time / sim.dt
