@@ -67,7 +67,8 @@ void translate(std::exception_ptr p) {
     }
 }
 
-// ---- zero-copy views (spec P4) -------------------------------------------------------------------
+// ---- zero-copy views (spec P4)
+// -------------------------------------------------------------------
 
 void set_readonly(py::array& a) {
     py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
@@ -117,9 +118,12 @@ void copy_vec2(const py::array_t<double, py::array::c_style | py::array::forceca
     std::memcpy(static_cast<void*>(dst.data()), p, dst.size() * sizeof(fdem::Vec2));
 }
 
-py::tuple vec(fdem::Vec2 v) { return py::make_tuple(v.x, v.y); }
+py::tuple vec(fdem::Vec2 v) {
+    return py::make_tuple(v.x, v.y);
+}
 
-// ---- meshes from arrays ---------------------------------------------------------------------------
+// ---- meshes from arrays
+// ---------------------------------------------------------------------------
 
 /// A MeshData from NumPy arrays: nodes (n, 2) [m], triangles (m, 3) or (m, 6) (Gmsh order:
 /// corners then mid-edge nodes), groups: name -> node ids (k,) (a point group), node pairs (k, 2)
@@ -133,15 +137,15 @@ fdem::MeshData mesh_from_arrays(
         throw fdem::InputError({name, 0, 0}, key, msg);
     };
     if (nodes.ndim() != 2 || nodes.shape(1) != 2) {
-        fail("nodes", "nodes: expected an array of shape (n, 2) [m], got " +
-                          std::to_string(nodes.ndim()) + " dimensions" +
-                          (nodes.ndim() == 2 ? " with " + std::to_string(nodes.shape(1)) +
-                                                   " columns"
-                                             : ""));
+        fail("nodes",
+             "nodes: expected an array of shape (n, 2) [m], got " + std::to_string(nodes.ndim()) +
+                 " dimensions" +
+                 (nodes.ndim() == 2 ? " with " + std::to_string(nodes.shape(1)) + " columns" : ""));
     }
     if (tris.ndim() != 2 || (tris.shape(1) != 3 && tris.shape(1) != 6)) {
-        fail("triangles", "triangles: expected an integer array of shape (m, 3) (3-node) or "
-                          "(m, 6) (6-node, corners then mid-edge nodes)");
+        fail("triangles",
+             "triangles: expected an integer array of shape (m, 3) (3-node) or "
+             "(m, 6) (6-node, corners then mid-edge nodes)");
     }
     fdem::MeshData mesh;
     mesh.file = name;
@@ -157,8 +161,8 @@ fdem::MeshData mesh_from_arrays(
     auto node_id = [&](int64_t v, const std::string& what, size_t row) {
         if (v < 0 || static_cast<size_t>(v) >= nn) {
             fail(what, what + ": row " + std::to_string(row) + " refers to node " +
-                           std::to_string(v) + "; expected a node id in [0, " +
-                           std::to_string(nn) + ")");
+                           std::to_string(v) + "; expected a node id in [0, " + std::to_string(nn) +
+                           ")");
         }
         return static_cast<int32_t>(v);
     };
@@ -211,8 +215,8 @@ fdem::MeshData mesh_from_arrays(
             fdem::PhysicalGroup g{gname, 0, ++point_tag, {}};
             for (py::ssize_t i = 0; i < ids.shape(0); ++i) {
                 g.elements.push_back(static_cast<int32_t>(mesh.points.size()));
-                mesh.points.push_back(node_id(ids.at(i), "group '" + gname + "'",
-                                              static_cast<size_t>(i)));
+                mesh.points.push_back(
+                    node_id(ids.at(i), "group '" + gname + "'", static_cast<size_t>(i)));
                 mesh.point_tag.push_back(g.tag);
             }
             mesh.physical[gname] = {0, g.tag};
@@ -249,8 +253,8 @@ py::array mesh_nodes(const fdem::MeshData& m) {
 
 py::array mesh_triangles(const fdem::MeshData& m) {
     const size_t cols = m.second_order() ? 6 : 3;
-    py::array_t<int32_t> a({static_cast<py::ssize_t>(m.tris.size()),
-                            static_cast<py::ssize_t>(cols)});
+    py::array_t<int32_t> a(
+        {static_cast<py::ssize_t>(m.tris.size()), static_cast<py::ssize_t>(cols)});
     auto r = a.mutable_unchecked<2>();
     for (size_t t = 0; t < m.tris.size(); ++t) {
         for (size_t k = 0; k < 3; ++k) {
@@ -263,7 +267,8 @@ py::array mesh_triangles(const fdem::MeshData& m) {
     return a;
 }
 
-// ---- the simulation -------------------------------------------------------------------------------
+// ---- the simulation
+// -------------------------------------------------------------------------------
 
 /// fdem::Simulation plus what the Python API adds: the measured sets (per-body resultants).
 struct PySimulation {
@@ -294,15 +299,19 @@ py::dict energy_dict(const fdem::Energy& e) {
 
 const char* status_name(fdem::RunStatus s) {
     switch (s) {
-        case fdem::RunStatus::Reached: return "reached";
-        case fdem::RunStatus::Stopped: return "stopped";
-        case fdem::RunStatus::CallbackStopped: return "callback_stopped";
+        case fdem::RunStatus::Reached:
+            return "reached";
+        case fdem::RunStatus::Stopped:
+            return "stopped";
+        case fdem::RunStatus::CallbackStopped:
+            return "callback_stopped";
     }
     return "?";
 }
 
 /// The largest divisor of n that is at most 256: how often run() hands control back to Python
-/// (the callback's `every` must stay a multiple of it, so the callback sees the steps it asked for).
+/// (the callback's `every` must stay a multiple of it, so the callback sees the steps it asked
+/// for).
 int64_t signal_stride(int64_t every) {
     if (every <= 256) return every;
     for (int64_t d = 256; d > 1; --d) {
@@ -346,7 +355,9 @@ py::dict run_impl(PySimulation& ps, double until, const py::object& callback, in
     return d;
 }
 
-std::string supports_name(const fdem::Model& m, size_t k) { return m.bcs[k].name; }
+std::string supports_name(const fdem::Model& m, size_t k) {
+    return m.bcs[k].name;
+}
 
 }  // namespace
 
@@ -373,9 +384,8 @@ PYBIND11_MODULE(_fdem, mod) {
     py::class_<fdem::MeshData>(mod, "Mesh",
                                "A triangle mesh with named physical groups, before it becomes "
                                "bodies: read from Gmsh, generated, or given as NumPy arrays.")
-        .def(py::init(&mesh_from_arrays), "nodes"_a, "triangles"_a,
-             "groups"_a = py::dict(), "triangle_groups"_a = py::dict(),
-             "name"_a = "<arrays>",
+        .def(py::init(&mesh_from_arrays), "nodes"_a, "triangles"_a, "groups"_a = py::dict(),
+             "triangle_groups"_a = py::dict(), "name"_a = "<arrays>",
              "Mesh from arrays: nodes (n, 2) [m]; triangles (m, 3), or (m, 6) for 6-node "
              "triangles in Gmsh order (corners, then the mid-edge nodes of edges 0-1, 1-2, 2-0); "
              "groups: name -> node ids (k,) (a point group) or node pairs (k, 2) (a curve "
@@ -390,8 +400,8 @@ PYBIND11_MODULE(_fdem, mod) {
             "path"_a, "mesh_size"_a = 0.0, "order"_a = 1,
             "Read a Gmsh .msh (2.2/4.1) or mesh a .geo with element size mesh_size [m] (order 2: "
             "6-node triangles). Raises fdem.InputError naming the file.")
-        .def_static("rectangle", &fdem::make_rectangle_mesh, "x0"_a, "y0"_a, "width"_a,
-                    "height"_a, "nx"_a, "ny"_a, "alternate"_a = false,
+        .def_static("rectangle", &fdem::make_rectangle_mesh, "x0"_a, "y0"_a, "width"_a, "height"_a,
+                    "nx"_a, "ny"_a, "alternate"_a = false,
                     "Structured rectangle [x0, x0+width] x [y0, y0+height] [m] of nx x ny cells, "
                     "two triangles each. Groups: curves 'bottom', 'right', 'top', 'left'; surface "
                     "'domain'.")
@@ -424,14 +434,16 @@ PYBIND11_MODULE(_fdem, mod) {
         .def_readonly("time", &fdem::State::time, "simulated time t^n [s]")
         .def_readonly("dt", &fdem::State::dt, "time step [s]")
         .def_property_readonly(
-            "x", [](py::object self) { return vec2_view(self, self.cast<fdem::State&>().x, false); },
+            "x",
+            [](py::object self) { return vec2_view(self, self.cast<fdem::State&>().x, false); },
             "(n_nodes, 2) positions x^n [m]; read-only view (change with Simulation.set_positions)")
         .def_property_readonly(
             "v", [](py::object self) { return vec2_view(self, self.cast<fdem::State&>().v, true); },
             "(n_nodes, 2) velocities v^{n-1/2} before a step, v^{n+1/2} after [m/s]; a WRITABLE "
             "view: assign between steps to change velocities (supports overwrite their nodes)")
         .def_property_readonly(
-            "f", [](py::object self) { return vec2_view(self, self.cast<fdem::State&>().f, false); },
+            "f",
+            [](py::object self) { return vec2_view(self, self.cast<fdem::State&>().f, false); },
             "(n_nodes, 2) total nodal force of the last step [N/m]; read-only view")
         .def_property_readonly(
             "f_contact",
@@ -455,7 +467,9 @@ PYBIND11_MODULE(_fdem, mod) {
         .def_property_readonly("num_bodies", &fdem::Model::num_bodies)
         .def_property_readonly(
             "node_x0",
-            [](py::object self) { return vec2_view(self, self.cast<fdem::Model&>().node_x0, false); },
+            [](py::object self) {
+                return vec2_view(self, self.cast<fdem::Model&>().node_x0, false);
+            },
             "(n_nodes, 2) reference positions [m]")
         .def_property_readonly(
             "node_mass",
@@ -490,7 +504,8 @@ PYBIND11_MODULE(_fdem, mod) {
             "body_names",
             [](const fdem::Model& m) {
                 std::vector<std::string> n;
-                for (const auto& b : m.bodies) n.push_back(b.name);
+                for (const auto& b : m.bodies)
+                    n.push_back(b.name);
                 return n;
             },
             "scenario name of each body (pieces of one entry share it)")
@@ -498,7 +513,8 @@ PYBIND11_MODULE(_fdem, mod) {
             "material_names",
             [](const fdem::Model& m) {
                 std::vector<std::string> n;
-                for (const auto& x : m.materials) n.push_back(x.name);
+                for (const auto& x : m.materials)
+                    n.push_back(x.name);
                 return n;
             },
             "name of each material")
@@ -538,8 +554,7 @@ PYBIND11_MODULE(_fdem, mod) {
         .def_property_readonly(
             "name", [](const PySimulation& s) { return s.sim.name(); }, "scenario file or name")
         .def_property_readonly(
-            "time", [](const PySimulation& s) { return s.sim.state().time; },
-            "simulated time [s]")
+            "time", [](const PySimulation& s) { return s.sim.state().time; }, "simulated time [s]")
         .def_property_readonly(
             "step_count", [](const PySimulation& s) { return s.sim.state().step; },
             "completed steps")
@@ -561,7 +576,8 @@ PYBIND11_MODULE(_fdem, mod) {
             [](PySimulation& s, int64_t n) {
                 if (n < 0) throw py::value_error("n must be >= 0");
                 py::gil_scoped_release release;
-                for (int64_t i = 0; i < n; ++i) s.sim.step();
+                for (int64_t i = 0; i < n; ++i)
+                    s.sim.step();
             },
             "n"_a = 1,
             "Take n steps (checks, output and checkpoints when due, every energy evaluated). "
@@ -628,14 +644,13 @@ PYBIND11_MODULE(_fdem, mod) {
                const py::array_t<double, py::array::c_style | py::array::forcecast>& v) {
                 copy_vec2(v, s.sim.state().v, "set_velocities");
             },
-            "v"_a,
-            "Copy (n_nodes, 2) velocities [m/s] into the state (state.v is also writable).")
+            "v"_a, "Copy (n_nodes, 2) velocities [m/s] into the state (state.v is also writable).")
         .def(
             "stress",
             [](const PySimulation& s) {
                 const auto& m = s.sim.model();
-                py::array_t<double> a({static_cast<py::ssize_t>(m.num_tris()), py::ssize_t{2},
-                                       py::ssize_t{2}});
+                py::array_t<double> a(
+                    {static_cast<py::ssize_t>(m.num_tris()), py::ssize_t{2}, py::ssize_t{2}});
                 auto r = a.mutable_unchecked<3>();
                 for (fdem::TriId t = 0; t < m.num_tris(); ++t) {
                     const fdem::TriFields f = fdem::tri_fields(m, s.sim.state(), t);
@@ -651,8 +666,8 @@ PYBIND11_MODULE(_fdem, mod) {
             "strain",
             [](const PySimulation& s) {
                 const auto& m = s.sim.model();
-                py::array_t<double> a({static_cast<py::ssize_t>(m.num_tris()), py::ssize_t{2},
-                                       py::ssize_t{2}});
+                py::array_t<double> a(
+                    {static_cast<py::ssize_t>(m.num_tris()), py::ssize_t{2}, py::ssize_t{2}});
                 auto r = a.mutable_unchecked<3>();
                 for (fdem::TriId t = 0; t < m.num_tris(); ++t) {
                     const fdem::TriFields f = fdem::tri_fields(m, s.sim.state(), t);
@@ -706,8 +721,7 @@ PYBIND11_MODULE(_fdem, mod) {
             },
             "names ('body/group') of the supports, in Model order")
         .def(
-            "open_output",
-            [](PySimulation& s, const std::string& dir) { s.sim.open_output(dir); },
+            "open_output", [](PySimulation& s, const std::string& dir) { s.sim.open_output(dir); },
             "dir"_a = "",
             "Write VTU frames + series.pvd, history.csv, bodies.csv, probes.csv and checkpoints "
             "into dir (default: the scenario's [output] dir) as `fdem run` does.")
@@ -717,25 +731,26 @@ PYBIND11_MODULE(_fdem, mod) {
             "seconds"_a, "Write a checkpoint every `seconds` of simulated time (needs output).")
         .def(
             "save_checkpoint",
-            [](PySimulation& s, const std::string& path) { s.sim.save_checkpoint(path); },
-            "path"_a, "Write the complete state to path; a restore continues bit for bit.")
+            [](PySimulation& s, const std::string& path) { s.sim.save_checkpoint(path); }, "path"_a,
+            "Write the complete state to path; a restore continues bit for bit.")
         .def(
             "restore_checkpoint",
             [](PySimulation& s, const std::string& path) { s.sim.restore_checkpoint(path); },
             "path"_a,
             "Continue from a checkpoint of the same model and dt (views stay valid). Raises "
             "fdem.InputError if it belongs to another model.")
-        .def("write_vtu",
-             [](const PySimulation& s, const std::string& path) {
-                 fdem::write_vtu(path, s.sim.model(), s.sim.state());
-             },
-             "path"_a, "Write the current state as one VTU file (ParaView).")
+        .def(
+            "write_vtu",
+            [](const PySimulation& s, const std::string& path) {
+                fdem::write_vtu(path, s.sim.model(), s.sim.state());
+            },
+            "path"_a, "Write the current state as one VTU file (ParaView).")
         .def("__repr__", [](const PySimulation& s) {
             const auto& m = s.sim.model();
             return "<fdem.Simulation '" + s.sim.name() + "': " + std::to_string(m.num_nodes()) +
                    " nodes, " + std::to_string(m.num_tris()) + " triangles, " +
-                   std::to_string(m.num_bodies()) + " bodies, t = " +
-                   std::to_string(s.sim.state().time) + " s, step " +
+                   std::to_string(m.num_bodies()) +
+                   " bodies, t = " + std::to_string(s.sim.state().time) + " s, step " +
                    std::to_string(s.sim.state().step) + ">";
         });
 }

@@ -189,7 +189,7 @@ TEST(LoadScenario, GoodScenarioBuildsTheModel) {
     EXPECT_EQ(m.contact.algorithm, ContactAlgorithm::Smooth);
     EXPECT_EQ(m.contact.params.penalty, 5e9);
     EXPECT_EQ(m.contact.params.friction, 0.3);
-    ASSERT_EQ(m.contact.pair_overrides.size(), 2u);  // only the pair set, in both orders
+    ASSERT_EQ(m.contact.pair_overrides.size(), 2u);             // only the pair set, in both orders
     EXPECT_EQ(pair_parameters(m.contact, 0, 0).friction, 0.3);  // steel-steel: default
     EXPECT_EQ(pair_parameters(m.contact, 0, 1).friction, 0.8);  // symmetric override
     EXPECT_EQ(pair_parameters(m.contact, 1, 0).friction, 0.8);
@@ -276,6 +276,72 @@ fix = ["y"]
     ASSERT_EQ(sc.model.bcs.size(), 1u);
     ASSERT_EQ(sc.model.bcs[0].nodes.size(), 1u);
     EXPECT_EQ(sc.model.node_x0[sc.model.bcs[0].nodes[0]], (Vec2{0.5, 0.21}));
+}
+
+// Meshes given in memory (the Python ModelBuilder's path, docs/python.md): a [[body]] whose mesh
+// names one takes it instead of a file, and the model equals the one built from the same mesh
+// by add_bodies directly.
+const char* kMemory = R"(
+[simulation]
+end_time = 0.1
+dt = "auto"
+[[material]]
+name = "m"
+density = 1000
+youngs_modulus = 1e6
+poisson_ratio = 0.2
+[[body]]
+name = "bar"
+mesh = "<bar>"
+material = "m"
+[[boundary]]
+body = "bar"
+group = "left"
+fix = ["x", "y"]
+)";
+
+TEST(LoadScenario, MeshGivenInMemory) {
+    MeshStore meshes;
+    meshes["<bar>"] = make_rectangle_mesh(0, 0, 1, 0.2, 5, 2);
+    const Scenario sc = load_scenario_from_string(kMemory, "memory.toml", kData, &meshes);
+    ASSERT_EQ(sc.model.num_bodies(), 1);
+    EXPECT_EQ(sc.model.num_tris(), 20);
+    EXPECT_EQ(sc.model.num_nodes(), 18);
+    ASSERT_EQ(sc.model.bcs.size(), 1u);
+    EXPECT_EQ(sc.model.bcs[0].nodes.size(), 3u);  // the left edge: 3 nodes
+    for (NodeId i : sc.model.bcs[0].nodes)
+        EXPECT_EQ(sc.model.node_x0[i].x, 0.0);
+}
+
+TEST(LoadScenario, MeshInMemoryRefusesGeoKeys) {
+    MeshStore meshes;
+    meshes["<bar>"] = make_rectangle_mesh(0, 0, 1, 0.2, 5, 2);
+    std::string text = kMemory;
+    text.replace(text.find("material = \"m\"\n[[boundary]]"), 0, "mesh_size = 0.1\n");
+    try {
+        (void)load_scenario_from_string(text, "memory.toml", kData, &meshes);
+        FAIL() << "expected an InputError";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.location().line, 13);  // the mesh_size line
+        EXPECT_NE(std::string(e.what()).find("mesh_size only applies to .geo files (mesh "
+                                             "\"<bar>\" is given in memory, already meshed)"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(LoadScenario, NameNotInMemoryIsAFilePath) {
+    MeshStore meshes;
+    meshes["<other>"] = make_rectangle_mesh(0, 0, 1, 0.2, 5, 2);
+    try {
+        (void)load_scenario_from_string(kMemory, "memory.toml", kData, &meshes);
+        FAIL() << "expected an InputError";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.key(), "body[0].mesh") << e.what();
+        EXPECT_NE(std::string(e.what()).find("mesh must be a Gmsh .msh or .geo file"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace
