@@ -16,5 +16,5 @@ def test_readme_python_example_runs(tmp_path, monkeypatch, capsys):
     code = code.replace('"examples/', f'"{ROOT}/examples/')
     exec(compile(code, "README.md", "exec"), {})
     out = capsys.readouterr().out
-    assert "t = 0.00 s" in out and re.search(r"\(820, 2\) [0-9a-f]{16}", out), out
+    assert "t = 0.10 s, E = 1156" in out and re.search(r"\(820, 2\) [0-9a-f]{16}", out), out
     assert (tmp_path / "slide.png").stat().st_size > 10000
