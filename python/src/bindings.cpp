@@ -355,9 +355,16 @@ py::dict run_impl(PySimulation& ps, double until, const py::object& callback, in
     return d;
 }
 
-std::string supports_name(const fdem::Model& m, size_t k) {
-    return m.bcs[k].name;
-}
+/// The supports ([[boundary]] entries) of one name "body/group": a handle on their controls
+/// State::bc_velocity / bc_enabled (spec P5; several Model::bcs entries may share the name, e.g.
+/// time windows: a control sets all of them).
+struct Support {
+    py::object owner;  // the Python Simulation
+    std::string name;
+    std::vector<size_t> indices;  // into Model::bcs
+
+    PySimulation& ps() const { return owner.cast<PySimulation&>(); }
+};
 
 }  // namespace
 
@@ -457,7 +464,22 @@ PYBIND11_MODULE(_fdem, mod) {
                 return vec2_view(self, self.cast<fdem::State&>().bc_reaction, false);
             },
             "(n_slots, 2) reaction of each supported node in the last step [N/m] (theory eq. "
-            "8.1), per support in Model order then its nodes; read-only view");
+            "8.1), per support in Model order then its nodes; read-only view")
+        .def_property_readonly(
+            "bc_velocity",
+            [](py::object self) {
+                return vec2_view(self, self.cast<fdem::State&>().bc_velocity, true);
+            },
+            "(n_supports, 2) prescribed velocity of each support in Model order [m/s]; a "
+            "WRITABLE view (the controls; sim.supports[name].velocity sets it by name)")
+        .def_property_readonly(
+            "bc_enabled",
+            [](py::object self) {
+                const auto& e = self.cast<fdem::State&>().bc_enabled;
+                return view<uint8_t>(self, e.data(), e.size(), 1, true);
+            },
+            "(n_supports,) uint8 on/off switch of each support (1 = active in its window); "
+            "WRITABLE view");
 
     py::class_<fdem::Model>(mod, "Model",
                             "What does not change during a run. Array properties are read-only "
@@ -520,6 +542,74 @@ PYBIND11_MODULE(_fdem, mod) {
             "name of each material")
         .def_property_readonly(
             "gravity", [](const fdem::Model& m) { return vec(m.gravity); }, "[m/s^2]");
+
+    // ---- Support controls ------------------------------------------------------------------
+    py::class_<Support>(mod, "Support",
+                        "Controls of the supports of one boundary group (sim.supports[name]): "
+                        "read by the next step, saved in checkpoints.")
+        .def_readonly("name", &Support::name, "'body/group'")
+        .def_property(
+            "velocity",
+            [](const Support& s) { return vec(s.ps().sim.state().bc_velocity[s.indices.front()]); },
+            [](const Support& s, std::pair<double, double> v) {
+                if (!std::isfinite(v.first) || !std::isfinite(v.second)) {
+                    throw py::value_error("support velocity must be finite");
+                }
+                for (size_t k : s.indices)
+                    s.ps().sim.state().bc_velocity[k] = {v.first, v.second};
+            },
+            "prescribed velocity (vx, vy) [m/s] from the next step on; only the components the "
+            "support holds are used (see components). Setting it sets every support of this "
+            "name; the work it does is booked as for a support window boundary (theory §4.3)")
+        .def_property(
+            "active",
+            [](const Support& s) { return s.ps().sim.state().bc_enabled[s.indices.front()] != 0; },
+            [](const Support& s, bool on) {
+                for (size_t k : s.indices)
+                    s.ps().sim.state().bc_enabled[k] = on ? 1 : 0;
+            },
+            "False switches the support off (its nodes move freely); True lets it act again "
+            "inside its start/end window")
+        .def_property_readonly(
+            "components",
+            [](const Support& s) {
+                const auto& bc = s.ps().sim.model().bcs[s.indices.front()];
+                std::vector<std::string> c;
+                if (bc.has_x) c.emplace_back("x");
+                if (bc.has_y) c.emplace_back("y");
+                return c;
+            },
+            "the velocity components the support prescribes")
+        .def_property_readonly(
+            "windows",
+            [](const Support& s) {
+                std::vector<std::pair<double, double>> w;
+                for (size_t k : s.indices) {
+                    const auto& bc = s.ps().sim.model().bcs[k];
+                    w.emplace_back(bc.start, bc.end);
+                }
+                return w;
+            },
+            "(start, end) [s] of each support of this name")
+        .def_property_readonly(
+            "nodes",
+            [](const Support& s) {
+                std::vector<int32_t> n;
+                for (size_t k : s.indices) {
+                    const auto& bc = s.ps().sim.model().bcs[k];
+                    n.insert(n.end(), bc.nodes.begin(), bc.nodes.end());
+                }
+                std::sort(n.begin(), n.end());
+                n.erase(std::unique(n.begin(), n.end()), n.end());
+                return py::array_t<int32_t>(static_cast<py::ssize_t>(n.size()), n.data());
+            },
+            "node ids of the support (a copy)")
+        .def("__repr__", [](const Support& s) {
+            const fdem::Vec2 v = s.ps().sim.state().bc_velocity[s.indices.front()];
+            return "<fdem.Support '" + s.name + "': velocity (" + std::to_string(v.x) + ", " +
+                   std::to_string(v.y) + ") m/s, " +
+                   (s.ps().sim.state().bc_enabled[s.indices.front()] != 0 ? "active" : "off") + ">";
+        });
 
     // ---- Simulation ------------------------------------------------------------------------
     py::class_<PySimulation>(mod, "Simulation",
@@ -712,14 +802,23 @@ PYBIND11_MODULE(_fdem, mod) {
             "last step [N/m] (theory §8; the columns of bodies.csv)")
         .def_property_readonly(
             "supports",
-            [](const PySimulation& s) {
-                std::vector<std::string> n;
-                for (size_t k = 0; k < s.sim.model().bcs.size(); ++k) {
-                    n.push_back(supports_name(s.sim.model(), k));
+            [](py::object self) {
+                auto& ps = self.cast<PySimulation&>();
+                py::dict d;
+                const auto& bcs = ps.sim.model().bcs;
+                for (size_t k = 0; k < bcs.size(); ++k) {
+                    const py::str name(bcs[k].name);
+                    if (d.contains(name)) continue;
+                    Support sup{self, bcs[k].name, {}};
+                    for (size_t j = k; j < bcs.size(); ++j) {
+                        if (bcs[j].name == bcs[k].name) sup.indices.push_back(j);
+                    }
+                    d[name] = sup;
                 }
-                return n;
+                return d;
             },
-            "names ('body/group') of the supports, in Model order")
+            "dict 'body/group' -> fdem.Support: the [[boundary]] supports, whose velocity and "
+            "on/off switch may be changed between steps (controls, saved in checkpoints)")
         .def(
             "open_output", [](PySimulation& s, const std::string& dir) { s.sim.open_output(dir); },
             "dir"_a = "",
