@@ -22,6 +22,7 @@ from ._fdem import (  # noqa: F401
     Simulation,
     SimulationError,
     State,
+    Support,
     __version__,
 )
 from .builder import ModelBuilder  # noqa: F401
@@ -33,6 +34,7 @@ __all__ = [
     "Model",
     "State",
     "Mesh",
+    "Support",
     "ModelBuilder",
     "EnergyRecorder",
     "InputError",

@@ -484,9 +484,10 @@ PYBIND11_MODULE(_fdem, mod) {
     py::class_<fdem::Model>(mod, "Model",
                             "What does not change during a run. Array properties are read-only "
                             "zero-copy NumPy views.")
-        .def_property_readonly("num_nodes", &fdem::Model::num_nodes)
-        .def_property_readonly("num_tris", &fdem::Model::num_tris)
-        .def_property_readonly("num_bodies", &fdem::Model::num_bodies)
+        .def_property_readonly("num_nodes", &fdem::Model::num_nodes, "number of nodes")
+        .def_property_readonly("num_tris", &fdem::Model::num_tris, "number of triangles")
+        .def_property_readonly("num_bodies", &fdem::Model::num_bodies,
+                               "number of bodies (discrete elements)")
         .def_property_readonly(
             "node_x0",
             [](py::object self) {
@@ -541,7 +542,8 @@ PYBIND11_MODULE(_fdem, mod) {
             },
             "name of each material")
         .def_property_readonly(
-            "gravity", [](const fdem::Model& m) { return vec(m.gravity); }, "[m/s^2]");
+            "gravity", [](const fdem::Model& m) { return vec(m.gravity); },
+            "gravity (gx, gy) [m/s^2]");
 
     // ---- Support controls ------------------------------------------------------------------
     py::class_<Support>(mod, "Support",

@@ -36,3 +36,26 @@ def test_request_stop_from_another_thread():
     assert not worker.is_alive()
     assert result["status"] == "stopped"
     assert 0 < sim.step_count < sim.end_time / sim.dt
+
+
+def test_ctrl_c_stops_the_run_and_raises_keyboard_interrupt():
+    import os
+    import signal
+
+    sim = fdem.Simulation.from_toml(example("03_contact_slide"))
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.perf_counter()
+    try:
+        sim.run(until=10.0)  # about 2 million steps: minutes, unless Ctrl-C stops it
+    except KeyboardInterrupt:
+        pass
+    else:
+        raise AssertionError("run() returned without KeyboardInterrupt")
+    finally:
+        timer.cancel()
+    assert time.perf_counter() - t0 < 10.0
+    steps = sim.step_count
+    assert 0 < steps < 10.0 / sim.dt
+    sim.run(steps=10)  # the simulation is usable afterwards
+    assert sim.step_count == steps + 10
