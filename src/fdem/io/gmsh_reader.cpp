@@ -385,10 +385,20 @@ void extract(MeshData& mesh) {
     mesh.line_tag.assign(mesh.lines.size(), 0);
     mesh.point_tag.assign(mesh.points.size(), 0);
 
-    // physical groups
+    // physical groups: the entities of every group from one pass over the entities (Gmsh 4.8's
+    // getEntitiesForPhysicalGroup walks all entities on every call, which made a mesh with one
+    // group per block quadratic in the blocks: issue #16 item 4)
     gmsh::vectorpair groups;
     gmsh::model::getPhysicalGroups(groups);
     std::sort(groups.begin(), groups.end());
+    std::map<std::pair<int, int>, std::vector<int>> group_entities;
+    for (const auto& [dim, tag] : entities) {
+        std::vector<int> phys;
+        gmsh::model::getPhysicalGroupsForEntity(dim, tag, phys);
+        for (const int p : phys) {
+            group_entities[{dim, std::abs(p)}].push_back(tag);  // a sign marks a reversed entity
+        }
+    }
     for (const auto& [dim, tag] : groups) {
         if (dim > 2) {
             continue;  // 3-D groups cannot contain supported elements (rejected above)
@@ -397,9 +407,9 @@ void extract(MeshData& mesh) {
         g.dim = dim;
         g.tag = tag;
         gmsh::model::getPhysicalName(dim, tag, g.name);
-        std::vector<int> ents;
-        gmsh::model::getEntitiesForPhysicalGroup(dim, tag, ents);
-        for (const int e : ents) {
+        const auto ge = group_entities.find({dim, tag});
+        const std::vector<int> none;
+        for (const int e : ge == group_entities.end() ? none : ge->second) {
             const auto it = entity_elems.find({dim, e});
             if (it != entity_elems.end()) {
                 g.elements.insert(g.elements.end(), it->second.begin(), it->second.end());
