@@ -89,10 +89,24 @@ void set_initial_velocity(Model& m, const Body& b, const BodyOptions& opt) {
 
 }  // namespace
 
+NodeId MeshNodeMap::operator[](int32_t q) const {
+    const auto it = std::lower_bound(mesh_nodes.begin(), mesh_nodes.end(), q);
+    if (it == mesh_nodes.end() || *it != q) return kNone;
+    return model_nodes[static_cast<size_t>(it - mesh_nodes.begin())];
+}
+
 std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector<int32_t>& tri_ids,
                                const BodyOptions& opt) {
-    const int32_t n_mesh_nodes = static_cast<int32_t>(mesh.nodes.size());
-    std::vector<NodeId> map(static_cast<size_t>(n_mesh_nodes), kNone);
+    const MeshNodeMap sparse = add_bodies_mapped(m, mesh, tri_ids, opt);
+    std::vector<NodeId> map(mesh.nodes.size(), kNone);
+    for (size_t i = 0; i < sparse.mesh_nodes.size(); ++i) {
+        map[static_cast<size_t>(sparse.mesh_nodes[i])] = sparse.model_nodes[i];
+    }
+    return map;
+}
+
+MeshNodeMap add_bodies_mapped(Model& m, const MeshData& mesh, const std::vector<int32_t>& tri_ids,
+                              const BodyOptions& opt) {
     const bool second = mesh.second_order();
     const ElementKind kind =
         opt.element.value_or(second ? ElementKind::Composite6 : ElementKind::Cst);
@@ -194,26 +208,46 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
         }
     }
 
-    // connected components: triangles sharing a node belong to the same body
-    DisjointSets sets(static_cast<size_t>(n_mesh_nodes));
+    // the mesh nodes these triangles use, ascending; local index = position in this list (an
+    // order-preserving renumbering, so the union-find below links the same nodes as one over
+    // the whole mesh would, at a cost independent of the mesh size)
+    MeshNodeMap out;
+    std::vector<int32_t>& used = out.mesh_nodes;
+    used.reserve(tri_ids.size() * (second ? 6 : 3));
     for (int32_t t : tri_ids) {
         const auto& n = mesh.tris[static_cast<size_t>(t)];
-        sets.unite(n[0], n[1]);
-        sets.unite(n[0], n[2]);
+        used.insert(used.end(), n.begin(), n.end());
+        if (second) {
+            const auto& q = mesh.tri_mid[static_cast<size_t>(t)];
+            used.insert(used.end(), q.begin(), q.end());
+        }
+    }
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    const auto local = [&used](int32_t q) {
+        return static_cast<int32_t>(std::lower_bound(used.begin(), used.end(), q) - used.begin());
+    };
+
+    // connected components: triangles sharing a node belong to the same body
+    DisjointSets sets(used.size());
+    for (int32_t t : tri_ids) {
+        const auto& n = mesh.tris[static_cast<size_t>(t)];
+        const int32_t n0 = local(n[0]);
+        sets.unite(n0, local(n[1]));
+        sets.unite(n0, local(n[2]));
         if (second) {
             for (const int32_t q : mesh.tri_mid[static_cast<size_t>(t)])
-                sets.unite(n[0], q);
+                sets.unite(n0, local(q));
         }
     }
     // group triangles by component root, components ordered by their first triangle (file order)
     std::vector<int32_t> sorted = tri_ids;
     std::sort(sorted.begin(), sorted.end());
-    std::vector<int32_t> roots;
     std::vector<std::vector<int32_t>> comp_tris;
     {
-        std::vector<int32_t> root_to_comp(static_cast<size_t>(n_mesh_nodes), -1);
+        std::vector<int32_t> root_to_comp(used.size(), -1);
         for (int32_t t : sorted) {
-            const int32_t r = sets.find(mesh.tris[static_cast<size_t>(t)][0]);
+            const int32_t r = sets.find(local(mesh.tris[static_cast<size_t>(t)][0]));
             if (root_to_comp[r] < 0) {
                 root_to_comp[r] = static_cast<int32_t>(comp_tris.size());
                 comp_tris.emplace_back();
@@ -222,6 +256,8 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
         }
     }
 
+    std::vector<NodeId>& map = out.model_nodes;  // by local index
+    map.assign(used.size(), kNone);
     const int32_t group = static_cast<int32_t>(m.group_names.size());
     m.group_names.push_back(opt.name);
     for (const auto& tris : comp_tris) {
@@ -241,13 +277,14 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
                 std::array<NodeId, 3> ids{};
                 for (int k = 0; k < 3; ++k) {
                     const int32_t q = sub[static_cast<size_t>(s)][static_cast<size_t>(k)];
-                    if (map[q] == kNone) {
-                        map[q] = m.num_nodes();
+                    const auto l = static_cast<size_t>(local(q));
+                    if (map[l] == kNone) {
+                        map[l] = m.num_nodes();
                         m.node_x0.push_back(mesh.nodes[q]);
                         m.node_v0.push_back(opt.velocity);
                         m.node_body.push_back(bid);
                     }
-                    ids[static_cast<size_t>(k)] = map[q];
+                    ids[static_cast<size_t>(k)] = map[l];
                 }
                 m.tri_nodes.push_back(ids);
                 m.tri_body.push_back(bid);
@@ -259,7 +296,7 @@ std::vector<NodeId> add_bodies(Model& m, const MeshData& mesh, const std::vector
         m.bodies.push_back(body);
         set_initial_velocity(m, body, opt);
     }
-    return map;
+    return out;
 }
 
 void finalize_model(Model& m) {
