@@ -12,6 +12,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -108,7 +109,9 @@ struct BodyEntry {
     const toml::table* table = nullptr;
     int mesh = 0;                  ///< index into the mesh cache
     bool fixed = false;            ///< fixed = true
-    std::vector<NodeId> node_map;  ///< mesh node -> model node (kNone if not in this body)
+    MeshNodeMap node_map;          ///< mesh node -> model node (kNone if not in this body)
+    BodyId body_begin = 0;         ///< the bodies made from this entry: [body_begin, body_end)
+    BodyId body_end = 0;           ///< (valid until finalize_model; renumbering keeps them)
 };
 
 struct LoadedMesh {
@@ -118,6 +121,15 @@ struct LoadedMesh {
     bool in_memory = false;  ///< given to load_scenario_from_string, not read from a file
     MeshData data;
     std::vector<int> tri_owner;  ///< body entry using each triangle, -1 if none
+    /// name -> indices into data.groups of the groups with that name, ascending (one lookup
+    /// per entry instead of a scan of every group: a mesh may have a group per block)
+    std::unordered_map<std::string, std::vector<size_t>> groups_by_name;
+
+    const std::vector<size_t>& named(const std::string& name) const {
+        static const std::vector<size_t> none;
+        const auto it = groups_by_name.find(name);
+        return it == groups_by_name.end() ? none : it->second;
+    }
 };
 
 std::string group_kind(int dim) {
@@ -375,6 +387,9 @@ private:
                              src_.line(f.location("mesh_size").line));
         }
         lm.tri_owner.assign(lm.data.tris.size(), -1);
+        for (size_t g = 0; g < lm.data.groups.size(); ++g) {
+            lm.groups_by_name[lm.data.groups[g].name].push_back(g);
+        }
         meshes_.push_back(std::move(lm));
         return static_cast<int>(meshes_.size() - 1);
     }
@@ -422,12 +437,11 @@ private:
             entry.name = f.string("name", std::nullopt);
             entry.table = tables[i];
             f.set_context(fmt::format("body \"{}\"", entry.name));
-            for (const BodyEntry& other : bodies_) {
-                if (other.name == entry.name) {
-                    f.fail(*f.node("name"), "name",
-                           fmt::format("duplicate body name \"{}\" (first defined on line {})",
-                                       entry.name, other.table->get("name")->source().begin.line));
-                }
+            if (const auto it = body_by_name_.find(entry.name); it != body_by_name_.end()) {
+                const BodyEntry& other = bodies_[it->second];
+                f.fail(*f.node("name"), "name",
+                       fmt::format("duplicate body name \"{}\" (first defined on line {})",
+                                   entry.name, other.table->get("name")->source().begin.line));
             }
             BodyOptions opt;
             opt.name = entry.name;
@@ -470,9 +484,9 @@ private:
             if (f.has("group")) {
                 const std::string g = f.string("group", std::nullopt);
                 const PhysicalGroup* pg = nullptr;
-                for (const PhysicalGroup& cand : lm.data.groups) {
-                    if (cand.name == g && cand.dim == 2) {
-                        pg = &cand;
+                for (const size_t k : lm.named(g)) {
+                    if (lm.data.groups[k].dim == 2) {
+                        pg = &lm.data.groups[k];
                     }
                 }
                 if (!pg) {
@@ -535,7 +549,9 @@ private:
             const bool separate =
                 f.choice("pieces", std::string("one"), {"one", "separate"}) == "separate";
             const BodyId first_body = m.num_bodies();
-            entry.node_map = add_bodies(m, lm.data, tris, opt);
+            entry.node_map = add_bodies_mapped(m, lm.data, tris, opt);
+            entry.body_begin = first_body;
+            entry.body_end = m.num_bodies();
             if (!separate && m.num_bodies() - first_body > 1) {
                 const Body& second = m.bodies[static_cast<size_t>(first_body) + 1];
                 const Vec2 at = m.node_x0[static_cast<size_t>(second.node_begin)];
@@ -549,6 +565,7 @@ private:
                                    lm.path, m.num_bodies() - first_body, at.x, at.y));
             }
             check_duplicate_nodes(f, lm, entry.node_map, m);
+            body_by_name_.emplace(entry.name, bodies_.size());
             bodies_.push_back(std::move(entry));
         }
     }
@@ -627,18 +644,18 @@ private:
     /// components) are a hidden crack: usually two meshes pasted without merging their nodes.
     /// Coincident nodes of different bodies are fine (bodies touching at t = 0).
     static void check_duplicate_nodes(const Fields& f, const LoadedMesh& lm,
-                                      const std::vector<NodeId>& node_map, const Model& m) {
+                                      const MeshNodeMap& node_map, const Model& m) {
         struct Key {
             BodyId body;
             Vec2 x;
             int32_t mesh_node;
         };
         std::vector<Key> keys;
-        for (size_t i = 0; i < node_map.size(); ++i) {
-            if (node_map[i] != kNone) {
-                keys.push_back(
-                    {m.node_body[node_map[i]], lm.data.nodes[i], static_cast<int32_t>(i)});
-            }
+        keys.reserve(node_map.mesh_nodes.size());
+        for (size_t k = 0; k < node_map.mesh_nodes.size(); ++k) {
+            const int32_t i = node_map.mesh_nodes[k];
+            keys.push_back({m.node_body[static_cast<size_t>(node_map.model_nodes[k])],
+                            lm.data.nodes[static_cast<size_t>(i)], i});
         }
         const auto less = [](const Key& a, const Key& b) {
             if (a.body != b.body) return a.body < b.body;
@@ -662,20 +679,18 @@ private:
     }
 
     static NodeId first_node(const BodyEntry& e) {
-        for (const NodeId n : e.node_map) {
-            if (n != kNone) return n;
-        }
-        return 0;
+        // the model node of the lowest mesh node, as the first in mesh order
+        return e.node_map.model_nodes.empty() ? 0 : e.node_map.model_nodes.front();
     }
 
     int body_index(const Fields& f, std::string_view key) const {
         const std::string name = f.string(key, std::nullopt);
+        if (const auto it = body_by_name_.find(name); it != body_by_name_.end()) {
+            return static_cast<int>(it->second);
+        }
         std::vector<std::string> names;
-        for (size_t i = 0; i < bodies_.size(); ++i) {
-            if (bodies_[i].name == name) {
-                return static_cast<int>(i);
-            }
-            names.push_back(bodies_[i].name);
+        for (const BodyEntry& e : bodies_) {
+            names.push_back(e.name);
         }
         const std::string guess = io::closest(name, names);
         f.fail(
@@ -718,7 +733,7 @@ private:
                 const Real vx = bc.has_x ? bc.velocity.x : 0.0, vy = bc.has_y ? bc.velocity.y : 0.0;
                 boundary_speeds_.push_back({f.location("velocity"), f.full_key("velocity"),
                                             f.context(), std::sqrt(vx * vx + vy * vy),
-                                            entry.table});
+                                            static_cast<size_t>(b)});
             }
             bc.start = f.real("start", 0.0, "s", Bounds::non_negative());
             bc.end =
@@ -804,7 +819,8 @@ private:
                       "ramp_time", "table"});
             const int b = body_index(f, "body");
             const BodyEntry& entry = bodies_[static_cast<size_t>(b)];
-            const MeshData& mesh = meshes_[static_cast<size_t>(entry.mesh)].data;
+            const LoadedMesh& lm = meshes_[static_cast<size_t>(entry.mesh)];
+            const MeshData& mesh = lm.data;
             const std::string group = f.string("group", std::nullopt);
             f.set_context(fmt::format("load on \"{}\" of body \"{}\"", group, entry.name));
 
@@ -832,8 +848,8 @@ private:
 
             // a load on a fixed body would do nothing: say so instead
             bool fixed = true;
-            for (const Body& body : m.bodies) {
-                if (body.group == b && !body.fixed) fixed = false;
+            for (BodyId k = entry.body_begin; k < entry.body_end; ++k) {
+                if (!m.bodies[static_cast<size_t>(k)].fixed) fixed = false;
             }
             if (fixed) {
                 f.fail(*f.node("body"), "body",
@@ -843,10 +859,9 @@ private:
             }
 
             bool found = false, curve = false;
-            for (const PhysicalGroup& g : mesh.groups) {
-                if (g.name != group) continue;
+            for (const size_t k : lm.named(group)) {
                 found = true;
-                curve = curve || g.dim == 1;
+                curve = curve || mesh.groups[k].dim == 1;
             }
             if (!found) {
                 const std::string guess = io::closest(group, group_names(mesh));
@@ -857,10 +872,9 @@ private:
                                 available_groups(mesh)));
             }
             if (ld.kind == LoadKind::Force) {
-                for (const PhysicalGroup& g : mesh.groups) {
-                    if (g.name != group) continue;
-                    for (const int32_t n : mesh.group_nodes(g)) {
-                        const NodeId id = entry.node_map[static_cast<size_t>(n)];
+                for (const size_t k : lm.named(group)) {
+                    for (const int32_t n : mesh.group_nodes(mesh.groups[k])) {
+                        const NodeId id = entry.node_map[n];
                         if (id != kNone) ld.nodes.push_back(id);
                     }
                 }
@@ -882,7 +896,7 @@ private:
                                        ld.kind == LoadKind::Traction ? "traction" : "pressure",
                                        group, mesh.file));
                 }
-                load_edges(f, m, b, entry, mesh, group, ld);
+                load_edges(f, m, entry, lm, group, ld);
             }
             m.loads.push_back(std::move(ld));
         }
@@ -891,13 +905,14 @@ private:
     /// The boundary edges of body entry b under the line elements of curve group `group`,
     /// oriented counter-clockwise around the body (Load::edges); a 3-node line gives its two
     /// halves, the edges of the sub-triangles. Every edge must be on the body's boundary.
-    void load_edges(const Fields& f, const Model& m, int b, const BodyEntry& entry,
-                    const MeshData& mesh, const std::string& group, Load& ld) const {
+    void load_edges(const Fields& f, const Model& m, const BodyEntry& entry, const LoadedMesh& lm,
+                    const std::string& group, Load& ld) const {
+        const MeshData& mesh = lm.data;
         // directed boundary edges of the entry's triangles: an undirected edge used by exactly
         // one triangle, kept in that triangle's counter-clockwise direction
         std::map<std::pair<NodeId, NodeId>, std::pair<int, std::array<NodeId, 2>>> edges;
-        for (const Body& body : m.bodies) {
-            if (body.group != b) continue;
+        for (BodyId bi = entry.body_begin; bi < entry.body_end; ++bi) {
+            const Body& body = m.bodies[static_cast<size_t>(bi)];
             for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
                 const auto& n = m.tri_nodes[static_cast<size_t>(t)];
                 for (int k = 0; k < 3; ++k) {
@@ -909,8 +924,8 @@ private:
             }
         }
         const auto add = [&](int32_t mp, int32_t mq) {
-            const NodeId p = entry.node_map[static_cast<size_t>(mp)];
-            const NodeId q = entry.node_map[static_cast<size_t>(mq)];
+            const NodeId p = entry.node_map[mp];
+            const NodeId q = entry.node_map[mq];
             if (p == kNone || q == kNone) return;  // another part of the mesh
             const auto it = edges.find({std::min(p, q), std::max(p, q)});
             const Vec2 a = mesh.nodes[static_cast<size_t>(mp)], c = mesh.nodes[static_cast<size_t>(mq)];
@@ -929,8 +944,9 @@ private:
             ld.edge_length0.push_back(norm(m.node_x0[static_cast<size_t>(d[1])] -
                                            m.node_x0[static_cast<size_t>(d[0])]));
         };
-        for (const PhysicalGroup& g : mesh.groups) {
-            if (g.name != group || g.dim != 1) continue;
+        for (const size_t k : lm.named(group)) {
+            const PhysicalGroup& g = mesh.groups[k];
+            if (g.dim != 1) continue;
             for (const int32_t e : g.elements) {
                 const auto& l = mesh.lines[static_cast<size_t>(e)];
                 if (mesh.line_mid.empty()) {
@@ -954,15 +970,14 @@ private:
     // group or the group selects none of the entry's nodes.
     std::vector<NodeId> group_nodes(const Fields& f, const BodyEntry& entry,
                                     const std::string& group) const {
-        const MeshData& mesh = meshes_[static_cast<size_t>(entry.mesh)].data;
+        const LoadedMesh& lm = meshes_[static_cast<size_t>(entry.mesh)];
+        const MeshData& mesh = lm.data;
         std::vector<int32_t> mesh_nodes;
         bool found = false;
-        for (const PhysicalGroup& g : mesh.groups) {
-            if (g.name == group) {
-                found = true;
-                const auto n = mesh.group_nodes(g);
-                mesh_nodes.insert(mesh_nodes.end(), n.begin(), n.end());
-            }
+        for (const size_t k : lm.named(group)) {
+            found = true;
+            const auto n = mesh.group_nodes(mesh.groups[k]);
+            mesh_nodes.insert(mesh_nodes.end(), n.begin(), n.end());
         }
         if (!found) {
             const std::string guess = io::closest(group, group_names(mesh));
@@ -973,7 +988,7 @@ private:
         }
         std::vector<NodeId> nodes;
         for (const int32_t n : mesh_nodes) {
-            const NodeId id = entry.node_map[static_cast<size_t>(n)];
+            const NodeId id = entry.node_map[n];
             if (id != kNone) {
                 nodes.push_back(id);
             }
@@ -1319,12 +1334,9 @@ private:
         // invert within a few steps whatever dt (theory eq. 5.3: the boundary moves more than
         // half an element per step at dt = 0.5 h / c_p); without this the run fails blaming dt
         for (const BoundarySpeed& b : boundary_speeds_) {
-            const BodyEntry* entry = nullptr;
-            for (const BodyEntry& e : bodies_) {
-                if (e.table == b.body) entry = &e;
-            }
+            const BodyEntry& entry = bodies_[b.body];
             const Material& mat = sc.model.materials[static_cast<size_t>(
-                sc.model.bodies[static_cast<size_t>(sc.model.node_body[first_node(*entry)])]
+                sc.model.bodies[static_cast<size_t>(sc.model.node_body[first_node(entry)])]
                     .material)];
             const Real cp = std::sqrt((mat.lambda + 2.0 * mat.mu) / mat.density);
             if (b.speed >= cp) {
@@ -1353,7 +1365,7 @@ private:
         std::string key;
         std::string context;
         Real speed = 0;
-        const toml::table* body = nullptr;
+        size_t body = 0;  ///< index into bodies_
     };
 
     struct KickEntry {
@@ -1441,6 +1453,7 @@ private:
     }
     std::vector<std::string> material_names_;
     std::vector<BodyEntry> bodies_;
+    std::unordered_map<std::string, size_t> body_by_name_;  ///< name -> index into bodies_
     std::vector<LoadedMesh> meshes_;
 };
 
