@@ -321,6 +321,16 @@ int run(const RunOptions& opt) {
             "balance    max |E_total - E_0| = {:.3g} J/m = {:.3g} % of the energy scale "
             "{:.6g} J/m\n",
             e.max_error, e.scale > 0 ? 100.0 * e.max_error / e.scale : 0.0, e.scale);
+        // the last step's pair counts (issue #16 item 1): candidates = what the narrow phase
+        // examined, in contact = those with a force; the rest were rejected
+        if (m.contact.algorithm != fdem::ContactAlgorithm::None) {
+            const fdem::Simulation::ContactCounts c = sim.contact_counts();
+            fmt::print(
+                "pairs      last step: {} candidate {}, {} in contact; {} broad-phase "
+                "searches since t = 0\n",
+                c.candidates, c.triangle_couples ? "triangle couples" : "(node, body) pairs",
+                c.in_contact, c.broad_phase_runs);
+        }
         fmt::print("output     {} ({} frames; open series.pvd in ParaView)\n", out,
                    sim.frames_written());
         fmt::print("state      step {}, t = {:.6g} s, hash {:016x} (x, v, energies)\n", s.step,

@@ -140,6 +140,18 @@ public:
     /// NaN/Inf, inverted elements, runaway velocities (check_state): throws SimulationError.
     void check() const;
     const EnergyMonitor& energy_monitor() const;
+    /// Contact pair counts of the last step (issue #16 item 1; read from ContactState, nothing
+    /// is counted in the step): the candidates the broad phase handed to the narrow phase and
+    /// those in contact (with a force) after it. Smooth and legacy-boundary contact count
+    /// (target node, contactor body) pairs, legacy-triangle couples of triangles. All zero
+    /// without contact and before the first step.
+    struct ContactCounts {
+        int64_t candidates = 0;
+        int64_t in_contact = 0;
+        int64_t broad_phase_runs = 0;   ///< candidate searches since t = 0 (kept by checkpoints)
+        bool triangle_couples = false;  ///< legacy-triangle: the counts are triangle couples
+    };
+    ContactCounts contact_counts() const;
     /// First warning of the run-time checks ("" = none) and how many steps warned.
     const std::string& first_warning() const;
     int64_t warnings() const;

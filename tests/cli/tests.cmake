@@ -114,3 +114,10 @@ add_test(NAME cli.thin_contact_layer_one_warning_per_entry
 set_tests_properties(cli.initial_overlap_exits_2 cli.thin_contact_layer_warns
   cli.thin_contact_layer_warns_at_run cli.thin_contact_layer_one_warning_per_entry
   PROPERTIES LABELS input)
+
+# ---- the last step's contact pairs in the run summary (issue #16 item 1, docs/output.md) -----
+add_test(NAME cli.run_prints_contact_pairs
+         COMMAND ${cli_dir}/contact_pairs.sh $<TARGET_FILE:fdem_cli> ${cli_dir}/restart.toml
+                 ${cli_out}/contact_pairs)
+set_tests_properties(cli.run_prints_contact_pairs PROPERTIES LABELS input
+                     PASS_REGULAR_EXPRESSION "OK: contact pairs line")

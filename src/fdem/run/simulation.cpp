@@ -406,6 +406,22 @@ void Simulation::check() const {
 const EnergyMonitor& Simulation::energy_monitor() const {
     return impl_->prog.energy;
 }
+Simulation::ContactCounts Simulation::contact_counts() const {
+    const ContactModel& cm = impl_->model.contact;
+    const ContactState& cs = impl_->state.contact;
+    ContactCounts c;
+    if (cm.algorithm == ContactAlgorithm::None) return c;
+    c.in_contact = cs.active_contacts;
+    if (cm.algorithm == ContactAlgorithm::LegacyTriangle) {
+        c.candidates = static_cast<int64_t>(cs.legacy.couples.size());
+        c.broad_phase_runs = cs.legacy.rebuilds;
+        c.triangle_couples = true;
+    } else {
+        c.candidates = static_cast<int64_t>(cs.cand.node.size());
+        c.broad_phase_runs = cs.rebuilds;
+    }
+    return c;
+}
 const std::string& Simulation::first_warning() const {
     return impl_->first_warning;
 }
