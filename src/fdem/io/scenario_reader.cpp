@@ -386,6 +386,11 @@ private:
                              fmt::format("{}: {}", f.context(), e.message()),
                              src_.line(f.location("mesh_size").line));
         }
+        return add_loaded(std::move(lm));
+    }
+
+    /// Append a read mesh with its triangle owners and group index; its index in meshes_.
+    int add_loaded(LoadedMesh lm) {
         lm.tri_owner.assign(lm.data.tris.size(), -1);
         for (size_t g = 0; g < lm.data.groups.size(); ++g) {
             lm.groups_by_name[lm.data.groups[g].name].push_back(g);
@@ -417,9 +422,7 @@ private:
         if (lm.data.file.empty()) {
             lm.data.file = name;
         }
-        lm.tri_owner.assign(lm.data.tris.size(), -1);
-        meshes_.push_back(std::move(lm));
-        return static_cast<int>(meshes_.size() - 1);
+        return add_loaded(std::move(lm));
     }
 
     void read_bodies(const toml::table& root, Model& m) {
