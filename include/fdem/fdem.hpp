@@ -4,6 +4,7 @@
 #include "fdem/build.hpp"
 #include "fdem/checks.hpp"
 #include "fdem/error.hpp"
+#include "fdem/fracture.hpp"
 #include "fdem/material.hpp"
 #include "fdem/math.hpp"
 #include "fdem/measure.hpp"

@@ -1,0 +1,136 @@
+// Constitutive law of a cohesive joint at one integration point (docs/theory.md §9, spec
+// fracture.md §3): normal and shear tractions from the opening o and slip s, damage, softening,
+// irreversibility (frozen D_max) and the stored energy. Inline: the joint kernel
+// (fracture/joints.cpp) and the tests call the same code.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "fdem/fracture.hpp"
+
+namespace fdem {
+
+/// Constants of one JointMaterial derived once (make_joint_law), read by the kernel.
+struct JointLaw {
+    Real ft = 0, c = 0, tan_phi = 0;  ///< f_t, c [Pa], tan(phi)
+    Real p = 0, ps = 0;               ///< penalties p, p_s [Pa]
+    Real GI = 0, GII = 0;             ///< fracture energies [J/m^2]
+    Real Iz = 0;                      ///< integral of z over [0, 1] (eq. 9.11)
+    Real half_p_over_ft = 0;          ///< p/(2 f_t): xi = o p/(2 h f_t) = o/o_p (eq. 9.4)
+    Real half_ps_over_c = 0;          ///< p_s/(2 c): eta = |s| p_s/(2 h c) when f_s = c
+    SofteningCurve curve = SofteningCurve::EvansMarathe;
+    SofteningLength length_rule = SofteningLength::Exact;
+    int32_t failure_points = 2;
+};
+
+/// Validated derived constants; throws std::invalid_argument naming the bad parameter.
+JointLaw make_joint_law(const JointMaterial& jm);
+
+/// Evans-Marathe constants a, b, c (theory eq. 9.10).
+inline constexpr Real kEmA = 0.63, kEmB = 1.8, kEmC = 6.0;
+
+/// Softening function z(D) for D in [0, 1] (theory eq. 9.10); D is clamped to [0, 1] first, so
+/// pow never sees a negative base (spec §9).
+inline Real softening_z(SofteningCurve curve, Real D) {
+    D = std::clamp(D, Real(0), Real(1));
+    if (curve == SofteningCurve::Linear) return 1.0 - D;
+    const Real a = kEmA, b = kEmB, c = kEmC;
+    const Real e = std::exp(D * (a + c * b) / ((a + b) * (1.0 - a - b)));
+    return (1.0 - ((a + b - 1.0) / (a + b)) * e) * (a * (1.0 - D) + b * std::pow(1.0 - D, c));
+}
+
+/// Length of the softening branch r - peak for strength f, energy G and elastic limit `peak`
+/// (o_p or s_p), by the material's rule (theory eq. 9.12).
+inline Real softening_range(const JointLaw& L, Real f, Real G, Real peak) {
+    switch (L.length_rule) {
+        case SofteningLength::Exact:
+            return G / (L.Iz * f);
+        case SofteningLength::Total:
+            return (G - (2.0 / 3.0) * f * peak) / (L.Iz * f);
+        case SofteningLength::YGeo:
+            return 3.0 * G / f;
+        case SofteningLength::Solidity:
+            return std::max(2.0 * peak, 3.0 * G / f);
+    }
+    return G / (L.Iz * f);
+}
+
+/// Tractions and damage of one integration point.
+struct JointPoint {
+    Real sigma = 0;  ///< normal traction, tension > 0 [Pa] (eq. 9.5)
+    Real tau = 0;    ///< shear traction along e [Pa] (eq. 9.8)
+    Real Dn = 0;     ///< normal damage <o - o_p>/(o_r - o_p) (eq. 9.9), not clamped
+    Real Ds = 0;     ///< shear damage <|s| - s_p>/(s_r - s_p) (eq. 9.9), not clamped
+    Real z = 1;      ///< z(D_max) used for the tractions
+    Real fs = 0;     ///< shear strength f_s (eq. 9.7)
+};
+
+/// The law at one point of a joint of current length h (theory eqs. 9.4-9.10): opening o, slip s;
+/// dmax (frozen irreversibility, spec §3.8) is raised to the current D. The intact elastic case
+/// (dmax = 0, o <= o_p, |s| <= s_p) takes no exp/pow/sqrt.
+inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Real s, Real& dmax) {
+    JointPoint r;
+    // eq. 9.5, compressive branch, and eq. 9.7: f_s from the current sigma_c = p o/h
+    Real sigma_c = 0;
+    Real inv_2hfs;  // 1/s_p = p_s/(2 h f_s) (eq. 9.4)
+    if (o < 0) {
+        sigma_c = L.p * o * inv_h;
+        r.fs = L.c - sigma_c * L.tan_phi;
+        inv_2hfs = L.ps * inv_h / (2.0 * r.fs);
+    } else {
+        r.fs = L.c;
+        inv_2hfs = L.half_ps_over_c * inv_h;
+    }
+    const Real xi = o * L.half_p_over_ft * inv_h;  // o/o_p, eq. 9.4
+    const Real abs_s = std::fabs(s);
+    const Real eta = abs_s * inv_2hfs;  // |s|/s_p
+    if (xi > 1.0 || eta > 1.0) {
+        // eq. 9.9: damage of each mode beyond its elastic limit, combined
+        if (xi > 1.0) {
+            const Real op = 2.0 * h * L.ft / L.p;
+            r.Dn = std::max(Real(0), (o - op) / softening_range(L, L.ft, L.GI, op));
+        }
+        if (eta > 1.0) {
+            const Real sp = 2.0 * h * r.fs / L.ps;
+            r.Ds = std::max(Real(0), (abs_s - sp) / softening_range(L, r.fs, L.GII, sp));
+        }
+        const Real D = std::min(Real(1), std::sqrt(r.Dn * r.Dn + r.Ds * r.Ds));
+        dmax = std::max(dmax, D);
+    }
+    r.z = dmax > 0 ? softening_z(L.curve, dmax) : 1.0;
+    // eq. 9.5: compression penalty, parabolic hardening, softening plateau scaled by z(D_max)
+    if (o < 0) {
+        r.sigma = sigma_c;
+    } else if (xi <= 1.0) {
+        r.sigma = L.ft * r.z * (xi * (2.0 - xi));
+    } else {
+        r.sigma = L.ft * r.z;
+    }
+    // eq. 9.8
+    const Real mag = eta <= 1.0 ? r.fs * r.z * (eta * (2.0 - eta)) : r.fs * r.z;
+    r.tau = s < 0 ? -mag : mag;
+    return r;
+}
+
+/// Stored (recoverable at fixed D_max) energy per unit length of a point (theory eq. 9.18):
+/// psi_n + psi_s from the same o, s, h and the point's z and f_s.
+inline Real joint_point_energy(const JointLaw& L, Real h, Real o, Real s, const JointPoint& r) {
+    Real psi;
+    if (o < 0) {
+        psi = 0.5 * L.p * o * o / h;
+    } else {
+        const Real op = 2.0 * h * L.ft / L.p;
+        const Real xi = o / op;
+        psi = xi <= 1.0 ? r.z * L.ft * op * (xi * xi - xi * xi * xi / 3.0)
+                        : r.z * L.ft * ((2.0 / 3.0) * op + (o - op));
+    }
+    const Real sp = 2.0 * h * r.fs / L.ps;
+    const Real abs_s = std::fabs(s);
+    const Real eta = abs_s / sp;
+    psi += eta <= 1.0 ? r.z * r.fs * sp * (eta * eta - eta * eta * eta / 3.0)
+                      : r.z * r.fs * ((2.0 / 3.0) * sp + (abs_s - sp));
+    return psi;
+}
+
+}  // namespace fdem

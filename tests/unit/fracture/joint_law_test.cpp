@@ -1,0 +1,162 @@
+// The joint law at one integration point (docs/theory.md §9, spec fracture.md §3, tests U2, U3).
+// Expected values are the spec's formulas written out here, not the code under test.
+#include "fracture/joint_law.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace fdem {
+namespace {
+
+JointMaterial granite() {
+    JointMaterial m;
+    m.tensile_strength = 1.0e6;
+    m.cohesion = 2.0e6;
+    m.friction_angle = 30.0 * M_PI / 180.0;
+    m.fracture_energy_I = 100.0;
+    m.fracture_energy_II = 200.0;
+    m.penalty = 1.0e10;
+    m.shear_penalty = 2.0e10;
+    return m;
+}
+
+// U2: z(0) = 1, z(1) = 0, z'(0) = 0, monotone, I_z = 0.386307 (spec eq. 3.8)
+TEST(JointLaw, EvansMaratheShape) {
+    const auto em = SofteningCurve::EvansMarathe;
+    EXPECT_DOUBLE_EQ(softening_z(em, 0.0), 1.0);
+    EXPECT_EQ(softening_z(em, 1.0), 0.0);
+    // z'(0) = 0: the one-sided difference (z(d) - 1)/d is O(d), Richardson removes that term
+    // (if z'(0) were not 0, the quotient would tend to it instead of shrinking like d)
+    const auto q = [&](double d) { return (softening_z(em, d) - 1.0) / d; };
+    EXPECT_NEAR(q(1e-5) / q(1e-4), 0.1, 1e-3);
+    EXPECT_NEAR(q(1e-4) / q(1e-3), 0.1, 1e-2);
+    // Richardson r(d) = 2 q(d/2) - q(d) = z'(0) + O(d^2): shrinks like d^2 (round-off 4 eps/d
+    // ~ 1e-10 at d = 1e-5), so z'(0) = 0 to below 1e-8
+    const auto r = [&](double d) { return 2.0 * q(0.5 * d) - q(d); };
+    EXPECT_NEAR(r(1e-5) / r(1e-4), 0.01, 1e-3);
+    EXPECT_LT(std::fabs(r(1e-5)), 1e-8) << r(1e-5);
+    double prev = 1.0;
+    for (int i = 1; i <= 10000; ++i) {
+        const double z = softening_z(em, i / 10000.0);
+        EXPECT_LE(z, prev) << i;
+        prev = z;
+    }
+    // I_z with the code's quadrature against the spec's value, and an independent Gauss-Legendre
+    // (5 points on 1000 panels) against both
+    const double Iz = softening_integral(em);
+    EXPECT_NEAR(Iz, 0.386307, 1e-6);
+    const double gx[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                          0.9061798459386640};
+    const double gw[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
+                          0.2369268850561891, 0.2369268850561891};
+    double gl = 0;
+    const int np = 1000;
+    for (int k = 0; k < np; ++k)
+        for (int q = 0; q < 5; ++q)
+            gl += 0.5 / np * gw[q] * softening_z(em, (k + 0.5 + 0.5 * gx[q]) / np);
+    EXPECT_NEAR(Iz, gl, 1e-13);
+    // spec §3.7: the "3G/f" rule dissipates 3 I_z G = 1.159 G in softening
+    EXPECT_NEAR(3.0 * Iz, 1.159, 5e-4);
+    EXPECT_EQ(softening_integral(SofteningCurve::Linear), 0.5);
+    EXPECT_DOUBLE_EQ(softening_z(SofteningCurve::Linear, 0.25), 0.75);
+}
+
+// U3: tractions at a point equal spec eqs. 3.2, 3.4, 3.5 (to 1e-12 relative)
+TEST(JointLaw, TractionsMatchSpecFormulas) {
+    const JointMaterial m = granite();
+    const JointLaw L = make_joint_law(m);
+    const double h = 0.01, ft = 1e6, c = 2e6, p = 1e10, ps = 2e10, tphi = std::tan(M_PI / 6);
+    const double op = 2 * h * ft / p, sp0 = 2 * h * c / ps;
+    auto at = [&](double o, double s) {
+        double dmax = 0;
+        return joint_point(L, h, 1.0 / h, o, s, dmax);
+    };
+    // peak normal traction at o = o_p, and the parabola below it
+    EXPECT_NEAR(at(op, 0).sigma, ft, 1e-12 * ft);
+    for (double xi : {0.1, 0.5, 0.9}) {
+        EXPECT_NEAR(at(xi * op, 0).sigma, ft * (2 * xi - xi * xi), 1e-12 * ft);
+    }
+    // compression penalty p o/h, no damage
+    EXPECT_NEAR(at(-0.3 * op, 0).sigma, p * (-0.3 * op) / h, 1e-12 * ft);
+    // peak shear traction c at s_p without normal stress, sign follows s
+    EXPECT_NEAR(at(0, sp0).tau, c, 1e-12 * c);
+    EXPECT_NEAR(at(0, -sp0).tau, -c, 1e-12 * c);
+    EXPECT_NEAR(at(0, 0.4 * sp0).tau, c * (0.8 - 0.16), 1e-12 * c);
+    // Mohr-Coulomb: under sigma_n < 0 the peak is c + |sigma_n| tan(phi) at s_p(f_s)
+    for (double sn : {-5e6, -10e6}) {
+        const double o = sn * h / p;
+        const double fs = c - sn * tphi;
+        const double sp = 2 * h * fs / ps;
+        const JointPoint r = at(o, sp);
+        EXPECT_NEAR(r.sigma, sn, 1e-12 * std::fabs(sn));
+        EXPECT_NEAR(r.tau, c + std::fabs(sn) * tphi, 1e-12 * fs);
+        EXPECT_EQ(r.Ds, 0.0);
+    }
+    // softening: D_n = (o - o_p)/(o_r - o_p), o_r - o_p = G_I/(I_z f_t) (eq. 3.9), sigma = f_t z(D)
+    const double Iz = softening_integral(SofteningCurve::EvansMarathe);
+    const double range = 100.0 / (Iz * ft);
+    double dmax = 0;
+    const JointPoint r = joint_point(L, h, 1.0 / h, op + 0.3 * range, 0, dmax);
+    EXPECT_NEAR(r.Dn, 0.3, 1e-12);
+    EXPECT_NEAR(dmax, 0.3, 1e-12);
+    EXPECT_NEAR(r.sigma, ft * softening_z(SofteningCurve::EvansMarathe, 0.3), 1e-12 * ft);
+    // mixed: D = sqrt(D_n^2 + D_s^2), shear range G_II/(I_z c)
+    const double srange = 200.0 / (Iz * c);
+    dmax = 0;
+    const JointPoint q = joint_point(L, h, 1.0 / h, op + 0.3 * range, sp0 + 0.4 * srange, dmax);
+    EXPECT_NEAR(dmax, 0.5, 1e-12);
+    const double z5 = softening_z(SofteningCurve::EvansMarathe, 0.5);
+    EXPECT_NEAR(q.sigma, ft * z5, 1e-12 * ft);
+    EXPECT_NEAR(q.tau, c * z5, 1e-12 * c);
+    // frozen: back inside the elastic range, the tractions keep z(D_max)
+    const JointPoint back = joint_point(L, h, 1.0 / h, 0.5 * op, 0.5 * sp0, dmax);
+    EXPECT_NEAR(dmax, 0.5, 1e-12);  // unchanged by unloading
+    EXPECT_NEAR(back.sigma, ft * z5 * 0.75, 1e-12 * ft);
+    EXPECT_NEAR(back.tau, c * z5 * 0.75, 1e-12 * c);
+}
+
+TEST(JointLaw, SofteningLengthRules) {
+    JointMaterial m = granite();
+    const double ft = 1e6, G = 100.0, op = 2e-6;
+    const double Iz = softening_integral(SofteningCurve::EvansMarathe);
+    m.softening_length = SofteningLength::Exact;
+    EXPECT_NEAR(softening_range(make_joint_law(m), ft, G, op), G / (Iz * ft), 1e-15);
+    m.softening_length = SofteningLength::Total;
+    EXPECT_NEAR(softening_range(make_joint_law(m), ft, G, op), (G - 2.0 / 3 * ft * op) / (Iz * ft),
+                1e-15);
+    m.softening_length = SofteningLength::YGeo;
+    EXPECT_NEAR(softening_range(make_joint_law(m), ft, G, op), 3 * G / ft, 1e-15);
+    m.softening_length = SofteningLength::Solidity;
+    EXPECT_NEAR(softening_range(make_joint_law(m), ft, G, op), 3 * G / ft, 1e-15);
+    EXPECT_NEAR(softening_range(make_joint_law(m), ft, G, 1e-3), 2e-3, 1e-15);
+}
+
+TEST(JointLaw, RejectsBadParameters) {
+    JointMaterial m = granite();
+    m.cohesion = 0;
+    EXPECT_THROW(make_joint_law(m), std::invalid_argument);
+    m = granite();
+    m.friction_angle = 0.5 * M_PI;
+    EXPECT_THROW(make_joint_law(m), std::invalid_argument);
+    m = granite();
+    m.failure_points = 4;
+    EXPECT_THROW(make_joint_law(m), std::invalid_argument);
+    m = granite();
+    m.penalty = std::nan("");
+    EXPECT_THROW(make_joint_law(m), std::invalid_argument);
+}
+
+// spec §3.3 (eq. 3.3) and §3.7 (eq. 3.11) numbers
+TEST(JointLaw, EffectiveModulusAndMaxLength) {
+    const double E = 5e10;
+    EXPECT_NEAR(joint_effective_modulus(E, 10 * E) / E - 1, -0.17, 0.005);
+    EXPECT_NEAR(joint_effective_modulus(E, 50 * E) / E - 1, -0.04, 0.005);
+    EXPECT_NEAR(joint_effective_modulus(E, 100 * E) / E - 1, -0.02, 0.005);
+    EXPECT_DOUBLE_EQ(joint_effective_modulus(E, 10 * E), E / 1.2);
+    const JointMaterial m = granite();
+    EXPECT_NEAR(joint_max_length(m) / (m.penalty * m.fracture_energy_I / 1e12), 0.647, 5e-4);
+}
+
+}  // namespace
+}  // namespace fdem
