@@ -1,0 +1,284 @@
+// Cohesive joint kernel (docs/theory.md §9; spec fracture.md §2, §3, §5, §6, §7).
+#include "fracture/joints.hpp"
+
+#include <omp.h>
+
+#include <limits>
+#include <string>
+
+#include "fdem/error.hpp"
+
+namespace fdem {
+
+namespace {
+
+inline constexpr Real kMinLengthRatio = 1e-9;  // spec §2 guard: h < 1e-9 h_0 is an error
+// per-chunk sums: work increment, elastic energy, newly broken, softening, first bad joint
+inline constexpr size_t kSlots = 5;
+
+}  // namespace
+
+void finalize_joints(Joints& J, int32_t num_nodes) {
+    const int32_t nj = J.num_joints();
+    std::vector<int32_t> count(static_cast<size_t>(num_nodes) + 1, 0);
+    for (int32_t j = 0; j < nj; ++j)
+        for (NodeId n : J.nodes[j])
+            ++count[static_cast<size_t>(n) + 1];
+    J.gather_node.clear();
+    J.gather_begin.assign(1, 0);
+    for (NodeId n = 0; n < num_nodes; ++n) {
+        if (count[static_cast<size_t>(n) + 1] == 0) continue;
+        J.gather_node.push_back(n);
+        J.gather_begin.push_back(J.gather_begin.back() + count[static_cast<size_t>(n) + 1]);
+    }
+    // slot of node n in gather_node, then fill entries in joint order (ascending j per node)
+    std::vector<int32_t> next(static_cast<size_t>(num_nodes), -1);
+    for (size_t g = 0; g < J.gather_node.size(); ++g)
+        next[static_cast<size_t>(J.gather_node[g])] = J.gather_begin[g];
+    J.gather_entry.assign(static_cast<size_t>(J.gather_begin.back()), 0);
+    for (int32_t j = 0; j < nj; ++j)
+        for (int k = 0; k < 4; ++k)
+            J.gather_entry[static_cast<size_t>(next[static_cast<size_t>(J.nodes[j][k])]++)] =
+                4 * j + k;
+}
+
+JointState make_joint_state(const Joints& J) {
+    const size_t n = static_cast<size_t>(J.num_joints());
+    JointState s;
+    s.d_max.assign(n, {0, 0, 0});
+    s.status.assign(n, JointStatus::Intact);
+    s.mode_bits.assign(n, 0);
+    s.mode.assign(n, JointMode::None);
+    s.break_step.assign(n, -1);
+    s.work.assign(n, 0);
+    s.f_prev.assign(n, {0, 0, 0, 0});
+    s.d_prev.assign(n, {0, 0, 0, 0});
+    s.jf.assign(n, {});
+    const size_t nc = (n + kJointChunk - 1) / kJointChunk;
+    s.chunk_sums.assign(kSlots * nc, 0);
+    return s;
+}
+
+namespace {
+
+struct ChunkOut {
+    Real work = 0, energy = 0;
+    int32_t broken = 0, softening = 0, bad = -1;
+};
+
+// One joint: tractions at the three Simpson points, forces f0, f1 on nodes 0, 1 (eq. 9.3; nodes
+// 3, 2 get -f0, -f1), damage and status, the work increment (eq. 9.17) and, with kEnergy, the
+// stored energy (eq. 9.18). Returns false when the joint carries no force (broken, or bad).
+template <bool kEnergy>
+inline bool one_joint(const Joints& J, JointState& s, const Vec2* __restrict x, int32_t j,
+                      int64_t step, Vec2& f0, Vec2& f1, ChunkOut& out) {
+    if (s.status[j] == JointStatus::Broken) return false;
+    const auto& nd = J.nodes[j];
+    const Vec2 x0 = x[nd[0]], x1 = x[nd[1]], x2 = x[nd[2]], x3 = x[nd[3]];
+    // eq. 9.1: mean of both faces; n points into A
+    const Vec2 eb = 0.5 * ((x1 - x0) + (x2 - x3));
+    const Real h = norm(eb);
+    if (!(h >= kMinLengthRatio * J.length0[j]) || !std::isfinite(h)) {
+        if (out.bad < 0) out.bad = j;
+        return false;
+    }
+    const Real inv_h = 1.0 / h;
+    const Vec2 e = inv_h * eb;
+    const Vec2 n = perp(e);
+    // eq. 9.2: end separations; the middle point is their mean (Simpson, eq. 9.3)
+    const Vec2 da = x0 - x3, db = x1 - x2;
+    const Vec2 dm = 0.5 * (da + db);
+    const Real oa = dot(n, da), sa = dot(e, da);
+    const Real om = dot(n, dm), sm = dot(e, dm);
+    const Real ob = dot(n, db), sb = dot(e, db);
+    const JointLaw& L = J.laws[static_cast<size_t>(J.law[j])];
+    auto& dmax = s.d_max[j];
+    const JointPoint pa = joint_point(L, h, inv_h, oa, sa, dmax[0]);
+    const JointPoint pm = joint_point(L, h, inv_h, om, sm, dmax[1]);
+    const JointPoint pb = joint_point(L, h, inv_h, ob, sb, dmax[2]);
+
+    bool broken = false;
+    if (dmax[0] > 0 || dmax[1] > 0 || dmax[2] > 0) {
+        // eq. 9.15: points at D >= 1 (frozen) and the mode they reached it in (spec §3.9)
+        int failed = 0;
+        const JointPoint* pts[3] = {&pa, &pm, &pb};
+        for (int k = 0; k < 3; ++k) {
+            if (dmax[k] < 1.0) continue;
+            ++failed;
+            const JointPoint& p = *pts[k];
+            if (p.Dn * p.Dn + p.Ds * p.Ds >= 1.0) {
+                const bool n1 = p.Dn >= 1.0, s1 = p.Ds >= 1.0;
+                s.mode_bits[j] |=
+                    static_cast<uint8_t>((n1 ? 1 : 0) | (s1 ? 2 : 0) | (!n1 && !s1 ? 4 : 0));
+            }
+        }
+        if (failed >= L.failure_points) {
+            broken = true;
+            s.status[j] = JointStatus::Broken;
+            const uint8_t b = s.mode_bits[j];
+            s.mode[j] = b == 1 ? JointMode::I : b == 2 ? JointMode::II : JointMode::Mixed;
+            s.break_step[j] = step;
+            ++out.broken;
+        } else {
+            s.status[j] = JointStatus::Softening;
+            ++out.softening;
+        }
+    }
+    if (broken) {
+        f0 = f1 = Vec2{0, 0};
+    } else {
+        // eq. 9.3: t = sigma n + tau e; Simpson weights h/6, 4h/6, h/6, the middle split
+        const Vec2 ta = pa.sigma * n + pa.tau * e;
+        const Vec2 tm = pm.sigma * n + pm.tau * e;
+        const Vec2 tb = pb.sigma * n + pb.tau * e;
+        const Real w = h / 6.0;
+        f0 = -w * (ta + 2.0 * tm);
+        f1 = -w * (tb + 2.0 * tm);
+        if constexpr (kEnergy) {
+            // eq. 9.18
+            out.energy += w * (joint_point_energy(L, h, oa, sa, pa) +
+                               4.0 * joint_point_energy(L, h, om, sm, pm) +
+                               joint_point_energy(L, h, ob, sb, pb));
+        }
+    }
+    // eq. 9.17: trapezoidal work of the joint forces over the step, on all four nodes
+    // (f3 = -f0, f2 = -f1 make it (f0 . d delta_a + f1 . d delta_b))
+    auto& fp = s.f_prev[j];
+    auto& dp = s.d_prev[j];
+    const Real dw = -0.5 * (((fp[0] + f0.x) * (da.x - dp[0]) + (fp[1] + f0.y) * (da.y - dp[1])) +
+                            ((fp[2] + f1.x) * (db.x - dp[2]) + (fp[3] + f1.y) * (db.y - dp[3])));
+    s.work[j] += dw;
+    out.work += dw;
+    fp = {f0.x, f0.y, f1.x, f1.y};
+    dp = {da.x, da.y, db.x, db.y};
+    return !broken;
+}
+
+template <bool kEnergy, bool kScatter>
+void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* __restrict f,
+               int32_t c, int64_t step) {
+    const int32_t begin = c * kJointChunk;
+    const int32_t end = std::min(J.num_joints(), begin + kJointChunk);
+    ChunkOut out;
+    for (int32_t j = begin; j < end; ++j) {
+        Vec2 f0, f1;
+        const bool loaded = one_joint<kEnergy>(J, s, x, j, step, f0, f1, out);
+        if constexpr (kScatter) {
+            if (loaded) {
+                const auto& nd = J.nodes[j];
+                f[nd[0]] += f0;
+                f[nd[1]] += f1;
+                f[nd[2]] -= f1;
+                f[nd[3]] -= f0;
+            }
+        } else {
+            s.jf[j] = {f0, f1};
+        }
+    }
+    Real* slot = s.chunk_sums.data() + kSlots * static_cast<size_t>(c);
+    slot[0] = out.work;
+    slot[1] = out.energy;
+    slot[2] = out.broken;
+    slot[3] = out.softening;
+    slot[4] = out.bad;
+}
+
+template <bool kScatter>
+void run_chunk(const Joints& J, JointState& s, const Vec2* x, Vec2* f, int32_t c, int64_t step,
+               bool energy) {
+    if (energy)
+        run_chunk<true, kScatter>(J, s, x, f, c, step);
+    else
+        run_chunk<false, kScatter>(J, s, x, f, c, step);
+}
+
+}  // namespace
+
+JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, std::span<Vec2> f,
+                       bool need_energy, int64_t step, double time) {
+    const int32_t nj = J.num_joints();
+    const int32_t nc = (nj + kJointChunk - 1) / kJointChunk;
+    const Vec2* xp = x.data();
+    Vec2* fp = f.data();
+    if (omp_get_max_threads() == 1 || nc < 2) {
+        // serial: scatter in joint order, the order the gather reproduces
+        for (int32_t c = 0; c < nc; ++c)
+            run_chunk<true>(J, s, xp, fp, c, step, need_energy);
+    } else {
+        const int32_t ng = static_cast<int32_t>(J.gather_node.size());
+#pragma omp parallel
+        {
+#pragma omp for schedule(static)
+            for (int32_t c = 0; c < nc; ++c)
+                run_chunk<false>(J, s, xp, fp, c, step, need_energy);
+                // every node adds its joints' forces in joint order (entries ascending in j)
+#pragma omp for schedule(static)
+            for (int32_t g = 0; g < ng; ++g) {
+                Vec2 acc = fp[J.gather_node[g]];
+                for (int32_t q = J.gather_begin[g]; q < J.gather_begin[g + 1]; ++q) {
+                    const int32_t e = J.gather_entry[q];
+                    const int32_t j = e >> 2;
+                    if (s.status[j] == JointStatus::Broken) continue;  // as the scatter
+                    switch (e & 3) {
+                        case 0:
+                            acc += s.jf[j][0];
+                            break;
+                        case 1:
+                            acc += s.jf[j][1];
+                            break;
+                        case 2:
+                            acc -= s.jf[j][1];
+                            break;
+                        default:
+                            acc -= s.jf[j][0];
+                            break;
+                    }
+                }
+                fp[J.gather_node[g]] = acc;
+            }
+        }
+    }
+    JointPass out;
+    int32_t bad = -1;
+    Real work = 0;
+    for (int32_t c = 0; c < nc; ++c) {
+        const Real* slot = s.chunk_sums.data() + kSlots * static_cast<size_t>(c);
+        work += slot[0];
+        out.elastic_energy += slot[1];
+        out.newly_broken += static_cast<int32_t>(slot[2]);
+        out.softening += static_cast<int32_t>(slot[3]);
+        if (bad < 0 && slot[4] >= 0) bad = static_cast<int32_t>(slot[4]);
+    }
+    if (bad >= 0) {
+        throw SimulationError(step, time, "joint " + std::to_string(bad),
+                              "joint length below 1e-9 of its reference length or not finite "
+                              "(node positions non-finite or a face collapsed); reduce dt");
+    }
+    s.total_work += work;
+    out.work = s.total_work;
+    if (need_energy) out.fracture = s.total_work - out.elastic_energy;  // eq. 9.19
+    return out;
+}
+
+void add_joint_row_sums(const Joints& J, std::span<Real> k) {
+    for (int32_t j = 0; j < J.num_joints(); ++j) {
+        const JointLaw& L = J.laws[static_cast<size_t>(J.law[j])];
+        for (NodeId n : J.nodes[j])
+            k[static_cast<size_t>(n)] += std::max(L.p, L.ps);  // eq. 9.16
+    }
+}
+
+Real joint_critical_dt(const Joints& J, std::span<const Real> node_mass) {
+    Real w2 = 0;  // largest Gershgorin bound of omega^2 (eq. 9.16)
+    for (size_t g = 0; g < J.gather_node.size(); ++g) {
+        Real k = 0;
+        for (int32_t q = J.gather_begin[g]; q < J.gather_begin[g + 1]; ++q) {
+            const JointLaw& L = J.laws[static_cast<size_t>(J.law[J.gather_entry[q] >> 2])];
+            k += std::max(L.p, L.ps);
+        }
+        w2 = std::max(w2, k / node_mass[static_cast<size_t>(J.gather_node[g])]);
+    }
+    return w2 > 0 ? 2.0 / std::sqrt(w2) : std::numeric_limits<Real>::infinity();
+}
+
+}  // namespace fdem
