@@ -17,6 +17,8 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -78,7 +80,8 @@ std::string shown(std::string s) {
 
 class Walker {
 public:
-    Walker(const std::string& path, std::string data) : path_(path), d_(std::move(data)) {}
+    Walker(const std::string& path, std::string data, MshPhysicalNames* names = nullptr)
+        : path_(path), d_(std::move(data)), names_(names) {}
 
     void run() {
         std::string s;
@@ -124,6 +127,8 @@ public:
 private:
     const std::string& path_;
     std::string d_;  ///< the whole file
+    MshPhysicalNames* names_ = nullptr;  ///< collects the physical names if not null
+    int name_sections_ = 0;
     size_t pos_ = 0;
     bool format_seen_ = false;
     bool binary_ = false;
@@ -312,10 +317,14 @@ private:
     /// no dim). Gmsh 4.8's MSH 4 reader indexes an array of 4 iterators by dim: a dimension
     /// outside 0..3 crashed it (SEGV in GModel::setPhysicalName, found by fuzzing).
     bool physical_names(size_t at) {
-        (void)at;
         long long n = 0;
         if (!line_count(n)) return false;
         const bool has_dim = msh4_ || version_ > 2.0;
+        // the names as Gmsh sets them, while every entry is plain (MshPhysicalNames)
+        bool plain = names_ != nullptr && ++name_sections_ == 1 && has_dim &&
+                     (msh4_ ? version_ == 4.1 : version_ == 2.2);
+        std::map<std::pair<int, int>, std::string> names;
+        std::set<std::pair<int, std::string>> given;  // (dim, name) already set
         std::string rest;
         for (long long k = 0; k < n; ++k) {
             const size_t entry_at = skip_ws();
@@ -328,8 +337,58 @@ private:
                                            k + 1, tag, dim));
             }
             if (!fgets(rest, 256, false)) return false;
+            if (plain) {
+                std::string name;
+                plain = plain_name(rest, name) && tag >= INT32_MIN && tag <= INT32_MAX;
+                const int d = static_cast<int>(dim), t = static_cast<int>(tag);
+                if (plain && given.count({d, name}) == 0 &&
+                    names.emplace(std::pair{d, t}, name).second) {
+                    given.insert({d, name});
+                }
+            }
         }
+        if (names_ == nullptr) return true;
+        if (name_sections_ > 1) {
+            names_->plain = false;  // a second section: Gmsh's own reading
+            return true;
+        }
+        // the section ends with its "$EndPhysicalNames" line, nothing but blanks before it
+        const size_t end_at = skip_ws();
+        const std::string end = "$EndPhysicalNames";
+        plain = plain && d_.compare(end_at, end.size(), end) == 0 && end_at > 0 &&
+                d_[end_at - 1] == '\n';
+        if (plain) {
+            size_t e = end_at + end.size();
+            while (e < d_.size() && d_[e] == '\r')
+                ++e;
+            plain = e < d_.size() && d_[e] == '\n';
+            names_->section_end = e + 1;
+        }
+        names_->plain = plain;
+        names_->section_begin = at;
+        names_->entries = static_cast<size_t>(n);
+        if (plain) names_->names = std::move(names);
         return true;
+    }
+
+    /// The rest of a $PhysicalNames entry line is ` "name"` with 1 to 99 printable characters
+    /// other than '"', then only blanks: the name Gmsh's ExtractDoubleQuotedString gives.
+    static bool plain_name(const std::string& rest, std::string& name) {
+        const size_t q = rest.find('"');
+        if (q == std::string::npos) return false;
+        for (size_t i = 0; i < q; ++i) {
+            if (rest[i] != ' ' && rest[i] != '\t') return false;
+        }
+        const size_t r = rest.find('"', q + 1);
+        if (r == std::string::npos || r == q + 1 || r - q - 1 > 99) return false;
+        name = rest.substr(q + 1, r - q - 1);
+        for (const char c : name) {
+            if (c < 32 || c > 126) return false;
+        }
+        for (size_t i = r + 1; i < rest.size(); ++i) {
+            if (!std::isspace(static_cast<unsigned char>(rest[i]))) return false;
+        }
+        return rest.back() == '\n';
     }
 
     /// A count read as "%d" from a whole line (MSH 2 section counts); false if not a number.
@@ -786,9 +845,14 @@ private:
 }  // namespace
 
 void precheck_msh(const std::string& path) {
+    precheck_msh(path, nullptr);
+}
+
+void precheck_msh(const std::string& path, MshPhysicalNames* names) {
     std::ifstream in(path, std::ios::binary);
     std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    Walker(path, std::move(data)).run();
+    if (names) *names = MshPhysicalNames{};
+    Walker(path, std::move(data), names).run();
 }
 
 }  // namespace fdem::io

@@ -16,7 +16,10 @@
 // undefined node, a truncated section): those keep Gmsh's message.
 #pragma once
 
+#include <cstddef>
+#include <map>
 #include <string>
+#include <utility>
 
 namespace fdem::io {
 
@@ -36,5 +39,24 @@ namespace fdem::io {
 ///  - in ASCII MSH 2, an $Elements line whose field count does not match its type.
 /// A file without any section (e.g. empty) passes: Gmsh reads an empty model from it.
 void precheck_msh(const std::string& path);
+
+/// The physical names of a .msh file as Gmsh 4.8 sets them from $PhysicalNames, and where that
+/// section lies, for reading a file with very many names without Gmsh's quadratic name lookup
+/// (GModel::setPhysicalName scans all earlier names; issue #16). Filled by precheck_msh(path,
+/// names); `plain` is false unless there is exactly one $PhysicalNames section (MSH 2.2 or 4.1)
+/// whose every entry is "dim tag \"name\"" with dim 0..3, a name of 1 to 99 printable characters
+/// and nothing after the closing quote, followed by its $EndPhysicalNames line.
+struct MshPhysicalNames {
+    bool plain = false;
+    /// (dim, tag) -> name, as Gmsh keeps them: the first name of a key wins, and a name already
+    /// given to a group of the same dimension is not given again
+    std::map<std::pair<int, int>, std::string> names;
+    size_t section_begin = 0;  ///< byte offset of the "$PhysicalNames" line
+    size_t section_end = 0;    ///< byte offset just past the "$EndPhysicalNames" line
+    size_t entries = 0;        ///< entries in the section
+};
+
+/// precheck_msh(path), also collecting the physical names (names may be nullptr).
+void precheck_msh(const std::string& path, MshPhysicalNames* names);
 
 }  // namespace fdem::io

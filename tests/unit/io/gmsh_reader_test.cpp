@@ -1,6 +1,7 @@
 // read_mesh through Gmsh: the four .msh flavours, .geo meshing, physical groups, orientation.
 // Test meshes: tests/data/square.geo (unit square, lc = 0.5) and the .msh files made from it.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "fdem/mesh.hpp"
 
@@ -186,6 +188,96 @@ TEST(ReadMesh, ConcurrentReadsAreSerialized) {
     const MeshData msh = read_mesh(kData + "/square_41_bin.msh");
     for (size_t i = 0; i < out.size(); ++i) {
         EXPECT_EQ(out[i].tris, (i % 2 ? geo : msh).tris) << i;
+    }
+}
+
+// ---- many physical names (issue #16 item 4) ------------------------------------------------
+// From 1000 names on, read_mesh hands Gmsh a copy without $PhysicalNames and names the groups
+// itself (Gmsh 4.8's name lookup is quadratic). The names must be Gmsh's: first name of a tag
+// wins, a name already used in the dimension is not given again, a tag without an entry has none.
+
+/// MSH 2.2 of n two-triangle blocks, block i in physical and elementary surface i + 1, with
+/// the $PhysicalNames lines `names` (already formatted).
+std::string blocks_msh(int n, const std::vector<std::string>& names) {
+    std::string s = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n";
+    s += std::to_string(names.size()) + "\n";
+    for (const std::string& l : names)
+        s += l + "\n";
+    s += "$EndPhysicalNames\n$Nodes\n" + std::to_string(4 * n) + "\n";
+    for (int i = 0; i < n; ++i) {
+        const double x = 1.5 * i;
+        for (int k = 0; k < 4; ++k) {
+            s += std::to_string(4 * i + k + 1) + " " + std::to_string(x + (k == 1 || k == 2)) +
+                 " " + std::to_string(k >= 2 ? 1 : 0) + " 0\n";
+        }
+    }
+    s += "$EndNodes\n$Elements\n" + std::to_string(2 * n) + "\n";
+    for (int i = 0; i < n; ++i) {
+        const int b = 4 * i, tag = i + 1;
+        s += std::to_string(2 * i + 1) + " 2 2 " + std::to_string(tag) + " " + std::to_string(tag) +
+             " " + std::to_string(b + 1) + " " + std::to_string(b + 2) + " " +
+             std::to_string(b + 3) + "\n";
+        s += std::to_string(2 * i + 2) + " 2 2 " + std::to_string(tag) + " " + std::to_string(tag) +
+             " " + std::to_string(b + 1) + " " + std::to_string(b + 3) + " " +
+             std::to_string(b + 4) + "\n";
+    }
+    return s + "$EndElements\n";
+}
+
+/// Name entries of n blocks with the awkward cases among the first 20: tags 6 and 10 both
+/// "dup", tag 12 twice (first "first12", then "second12"), tag 15 without an entry.
+std::vector<std::string> awkward_names(int n) {
+    std::vector<std::string> out;
+    for (int t = 1; t <= n; ++t) {
+        if (t == 15) continue;
+        out.push_back(t == 6 || t == 10 ? "2 " + std::to_string(t) + " \"dup\""
+                      : t == 12         ? "2 12 \"first12\""
+                                : "2 " + std::to_string(t) + " \"b" + std::to_string(t) + "\"");
+    }
+    out.push_back("2 12 \"second12\"");
+    return out;
+}
+
+TEST(ReadMesh, ManyPhysicalNamesAreNamedAsGmshNamesThem) {
+    // 20 blocks: Gmsh's own names; 1500: fdem's; 1500 with one entry Gmsh reads the same but
+    // fdem does not take as plain (text after the quote): Gmsh's own names again
+    const MeshData few = read_mesh(write_temp("few_names.msh", blocks_msh(20, awkward_names(20))));
+    const MeshData many =
+        read_mesh(write_temp("many_names.msh", blocks_msh(1500, awkward_names(1500))));
+    std::vector<std::string> odd = awkward_names(1500);
+    odd[100] += " trailing";
+    const MeshData gmsh_many = read_mesh(write_temp("many_names_gmsh.msh", blocks_msh(1500, odd)));
+    ASSERT_EQ(few.groups.size(), 20u);
+    ASSERT_EQ(many.groups.size(), 1500u);
+    ASSERT_EQ(gmsh_many.groups.size(), 1500u);
+    for (size_t g = 0; g < many.groups.size(); ++g) {
+        const PhysicalGroup& a = many.groups[g];
+        const PhysicalGroup& b = gmsh_many.groups[g];
+        EXPECT_EQ(a.tag, b.tag);
+        EXPECT_EQ(a.name, b.name) << "tag " << a.tag;
+        EXPECT_EQ(a.elements, b.elements) << "tag " << a.tag;
+        if (g < few.groups.size()) {
+            EXPECT_EQ(a.name, few.groups[g].name) << "tag " << a.tag;
+            EXPECT_EQ(a.elements, few.groups[g].elements) << "tag " << a.tag;
+        }
+        EXPECT_EQ(a.elements, (std::vector<int32_t>{static_cast<int32_t>(2 * g),
+                                                    static_cast<int32_t>(2 * g + 1)}));
+    }
+    // what Gmsh does with the awkward entries, seen through the small file
+    EXPECT_EQ(few.groups[5].name, "dup");
+    EXPECT_EQ(few.groups[9].name, "");
+    EXPECT_EQ(few.groups[11].name, "first12");
+    EXPECT_EQ(few.groups[14].name, "");
+    EXPECT_EQ(many.groups[1499].name, "b1500");
+    EXPECT_EQ(many.physical, gmsh_many.physical);
+    EXPECT_TRUE(many.nodes == gmsh_many.nodes);
+    EXPECT_EQ(many.tris, gmsh_many.tris);
+    EXPECT_EQ(many.tri_tag, gmsh_many.tri_tag);
+    // the temporary copy is gone
+    const std::string prefix = "fdem-" + std::to_string(static_cast<long>(::getpid())) + "-";
+    for (const auto& e :
+         std::filesystem::directory_iterator(std::filesystem::temp_directory_path())) {
+        EXPECT_NE(e.path().filename().string().rfind(prefix, 0), 0u) << e.path();
     }
 }
 
