@@ -55,7 +55,7 @@ JointLaw make_joint_law(const JointMaterial& jm) {
     L.GII = jm.fracture_energy_II;
     L.Iz = softening_integral(jm.softening);
     L.half_p_over_ft = L.p / (2.0 * L.ft);
-    L.half_ps_over_c = L.ps / (2.0 * L.c);
+    L.half_ps = 0.5 * L.ps;
     L.curve = jm.softening;
     L.length_rule = jm.softening_length;
     L.failure_points = jm.failure_points;

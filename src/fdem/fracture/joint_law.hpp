@@ -18,7 +18,7 @@ struct JointLaw {
     Real GI = 0, GII = 0;             ///< fracture energies [J/m^2]
     Real Iz = 0;                      ///< integral of z over [0, 1] (eq. 9.11)
     Real half_p_over_ft = 0;          ///< p/(2 f_t): xi = o p/(2 h f_t) = o/o_p (eq. 9.4)
-    Real half_ps_over_c = 0;          ///< p_s/(2 c): eta = |s| p_s/(2 h c) when f_s = c
+    Real half_ps = 0;                 ///< p_s/2: 1/s_p = (p_s/2)/(h f_s) (eq. 9.4)
     SofteningCurve curve = SofteningCurve::EvansMarathe;
     SofteningLength length_rule = SofteningLength::Exact;
     int32_t failure_points = 2;
@@ -73,18 +73,16 @@ inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Rea
     JointPoint r;
     // eq. 9.5, compressive branch, and eq. 9.7: f_s from the current sigma_c = p o/h
     Real sigma_c = 0;
-    Real inv_2hfs;  // 1/s_p = p_s/(2 h f_s) (eq. 9.4)
     if (o < 0) {
         sigma_c = L.p * o * inv_h;
         r.fs = L.c - sigma_c * L.tan_phi;
-        inv_2hfs = L.ps * inv_h / (2.0 * r.fs);
     } else {
         r.fs = L.c;
-        inv_2hfs = L.half_ps_over_c * inv_h;
     }
-    const Real xi = o * L.half_p_over_ft * inv_h;  // o/o_p, eq. 9.4
+    const Real inv_sp = (L.half_ps * inv_h) / r.fs;  // 1/s_p = p_s/(2 h f_s) (eq. 9.4)
+    const Real xi = o * L.half_p_over_ft * inv_h;    // o/o_p, eq. 9.4
     const Real abs_s = std::fabs(s);
-    const Real eta = abs_s * inv_2hfs;  // |s|/s_p
+    const Real eta = abs_s * inv_sp;  // |s|/s_p
     if (xi > 1.0 || eta > 1.0) {
         // eq. 9.9: damage of each mode beyond its elastic limit, combined
         if (xi > 1.0) {
@@ -109,8 +107,24 @@ inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Rea
     }
     // eq. 9.8
     const Real mag = eta <= 1.0 ? r.fs * r.z * (eta * (2.0 - eta)) : r.fs * r.z;
-    r.tau = s < 0 ? -mag : mag;
+    r.tau = std::copysign(mag, s);
     return r;
+}
+
+/// Intact point in its elastic range: the same arithmetic as joint_point with dmax = 0 (same
+/// bits), without branches; fills r (z = 1) and returns max(o/o_p, |s|/s_p). The result is
+/// valid only when that is <= 1 (otherwise call joint_point).
+inline Real joint_point_intact(const JointLaw& L, Real inv_h, Real o, Real s, JointPoint& r) {
+    const Real sigma_c = L.p * std::min(o, Real(0)) * inv_h;  // eq. 9.5, o < 0; else 0
+    r.fs = L.c - sigma_c * L.tan_phi;                         // eq. 9.7 (= c for o >= 0)
+    const Real inv_sp = (L.half_ps * inv_h) / r.fs;           // eq. 9.4
+    const Real xi = std::max(o, Real(0)) * L.half_p_over_ft * inv_h;
+    const Real eta = std::fabs(s) * inv_sp;
+    r.sigma = sigma_c + L.ft * (xi * (2.0 - xi));          // one of the two terms is 0
+    r.tau = std::copysign(r.fs * (eta * (2.0 - eta)), s);  // eq. 9.8, z = 1
+    r.z = 1;
+    r.Dn = r.Ds = 0;
+    return std::max(xi, eta);
 }
 
 /// Stored (recoverable at fixed D_max) energy per unit length of a point (theory eq. 9.18):

@@ -3,6 +3,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <limits>
 #include <string>
 
@@ -70,8 +71,9 @@ struct ChunkOut {
 // 3, 2 get -f0, -f1), damage and status, the work increment (eq. 9.17) and, with kEnergy, the
 // stored energy (eq. 9.18). Returns false when the joint carries no force (broken, or bad).
 template <bool kEnergy>
-inline bool one_joint(const Joints& J, JointState& s, const Vec2* __restrict x, int32_t j,
-                      int64_t step, Vec2& f0, Vec2& f1, ChunkOut& out) {
+[[gnu::always_inline]] inline bool one_joint(const Joints& J, JointState& s,
+                                             const Vec2* __restrict x, int32_t j, int64_t step,
+                                             Vec2& f0, Vec2& f1, ChunkOut& out) {
     if (s.status[j] == JointStatus::Broken) return false;
     const auto& nd = J.nodes[j];
     const Vec2 x0 = x[nd[0]], x1 = x[nd[1]], x2 = x[nd[2]], x3 = x[nd[3]];
@@ -93,12 +95,21 @@ inline bool one_joint(const Joints& J, JointState& s, const Vec2* __restrict x, 
     const Real ob = dot(n, db), sb = dot(e, db);
     const JointLaw& L = J.laws[static_cast<size_t>(J.law[j])];
     auto& dmax = s.d_max[j];
-    const JointPoint pa = joint_point(L, h, inv_h, oa, sa, dmax[0]);
-    const JointPoint pm = joint_point(L, h, inv_h, om, sm, dmax[1]);
-    const JointPoint pb = joint_point(L, h, inv_h, ob, sb, dmax[2]);
-
+    JointPoint pa, pm, pb;
+    bool elastic = false;
+    if (s.status[j] == JointStatus::Intact) {
+        // intact joint in its elastic range: branch-free, the same bits as joint_point
+        elastic = std::max({joint_point_intact(L, inv_h, oa, sa, pa),
+                            joint_point_intact(L, inv_h, om, sm, pm),
+                            joint_point_intact(L, inv_h, ob, sb, pb)}) <= 1.0;
+    }
+    if (!elastic) {
+        pa = joint_point(L, h, inv_h, oa, sa, dmax[0]);
+        pm = joint_point(L, h, inv_h, om, sm, dmax[1]);
+        pb = joint_point(L, h, inv_h, ob, sb, dmax[2]);
+    }
     bool broken = false;
-    if (dmax[0] > 0 || dmax[1] > 0 || dmax[2] > 0) {
+    if (!elastic && (dmax[0] > 0 || dmax[1] > 0 || dmax[2] > 0)) {
         // eq. 9.15: points at D >= 1 (frozen) and the mode they reached it in (spec §3.9)
         int failed = 0;
         const JointPoint* pts[3] = {&pa, &pm, &pb};

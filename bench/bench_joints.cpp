@@ -1,0 +1,82 @@
+// Cohesive joint kernel (docs/performance.md "Fracture joints", theory §9): joint_forces on a
+// jointed structured mesh (every triangle its own nodes, a joint per internal edge, ~1.5 joints
+// per triangle), intact joints loaded elastically (random separations up to 0.3 o_p).
+// items/s = joint-steps/s. Args: {triangles, OpenMP threads}. NoEnergy: without E_joint (as the
+// step between outputs); the work W_J is accumulated in both.
+#include <random>
+
+#include "bench_common.hpp"
+#include "fdem/mesh.hpp"
+#include "fracture/joint_mesh.hpp"
+
+namespace fdem {
+namespace {
+
+struct JointScene {
+    Joints J;
+    std::vector<Vec2> x;
+};
+
+const JointScene& cached_scene(int64_t num_tris) {
+    static std::map<int64_t, std::unique_ptr<JointScene>> cache;
+    auto& slot = cache[num_tris];
+    if (!slot) {
+        const int n = static_cast<int>(std::lround(std::sqrt(num_tris / 2.0)));
+        const MeshData mesh = make_rectangle_mesh(0, 0, 1.0, 1.0, n, n, true);
+        const SplitMesh sm = split_mesh(mesh.nodes, mesh.tris);
+        slot = std::make_unique<JointScene>();
+        JointMaterial jm;
+        jm.tensile_strength = 1e7;
+        jm.cohesion = 3e7;
+        jm.friction_angle = 0.5;
+        jm.fracture_energy_I = 50;
+        jm.fracture_energy_II = 250;
+        jm.penalty = jm.shear_penalty = 5e11;  // 10 E, E = 50 GPa
+        slot->J.laws.push_back(make_joint_law(jm));
+        add_edge_joints(slot->J, sm.x0, sm.tris, sm.vertex, 0);
+        finalize_joints(slot->J, static_cast<int32_t>(sm.x0.size()));
+        const double op = 2.0 * (1.0 / n) * jm.tensile_strength / jm.penalty;
+        std::mt19937_64 rng(1);
+        std::uniform_real_distribution<double> U(-0.15 * op, 0.15 * op);
+        slot->x = sm.x0;
+        for (auto& p : slot->x)
+            p += Vec2{U(rng), U(rng)};
+    }
+    return *slot;
+}
+
+void joints(benchmark::State& st, bool energy) {
+    omp_set_num_threads(static_cast<int>(st.range(1)));
+    const JointScene& sc = cached_scene(st.range(0));
+    JointState s = make_joint_state(sc.J);
+    std::vector<Vec2> f(sc.x.size());
+    int32_t softening = 0;
+    for (auto _ : st) {
+        const JointPass p = joint_forces(sc.J, s, sc.x, f, energy);
+        softening += p.softening;
+        benchmark::DoNotOptimize(p.work);
+    }
+    if (softening != 0) st.SkipWithError("joints left the elastic range");
+    st.SetItemsProcessed(st.iterations() * sc.J.num_joints());
+    st.counters["joints"] = static_cast<double>(sc.J.num_joints());
+    st.counters["omp_threads"] = static_cast<double>(st.range(1));
+}
+
+void BM_Joints(benchmark::State& st) {
+    joints(st, true);
+}
+void BM_JointsNoEnergy(benchmark::State& st) {
+    joints(st, false);
+}
+
+void sizes(benchmark::internal::Benchmark* b) {
+    for (int threads : {1, 2})
+        for (int64_t n : {1 << 14, 1 << 17, 1 << 20})
+            b->Args({n, threads});
+}
+
+BENCHMARK(BM_Joints)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointsNoEnergy)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace fdem
