@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <random>
 
 namespace fdem {
 namespace {
@@ -114,6 +116,42 @@ TEST(JointLaw, TractionsMatchSpecFormulas) {
     EXPECT_NEAR(dmax, 0.5, 1e-12);  // unchanged by unloading
     EXPECT_NEAR(back.sigma, ft * z5 * 0.75, 1e-12 * ft);
     EXPECT_NEAR(back.tau, c * z5 * 0.75, 1e-12 * c);
+}
+
+// the kernel's branch-free path for intact elastic points gives the general law's bits
+TEST(JointLaw, IntactPathSameBitsAsGeneral) {
+    const JointLaw L = make_joint_law(granite());
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> U(-1, 1);
+    const auto bits = [](double v) {
+        uint64_t b;
+        std::memcpy(&b, &v, sizeof b);
+        return b;
+    };
+    int inside = 0, outside = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const double h = 0.01 * (1.5 + U(rng));
+        const double op = 2 * h * 1e6 / 1e10, sp = 2 * h * 2e6 / 2e10;
+        const double o = (i % 7 == 0 ? 0.0 : 1.3 * op * U(rng) - 0.5 * op);
+        const double sl = 2.5 * sp * U(rng);
+        JointPoint a;
+        const double m = joint_point_intact(L, 1.0 / h, o, sl, a);
+        double dmax = 0;
+        const JointPoint b = joint_point(L, h, 1.0 / h, o, sl, dmax);
+        if (m <= 1.0) {
+            ++inside;
+            EXPECT_EQ(dmax, 0.0);
+            EXPECT_EQ(bits(a.sigma), bits(b.sigma)) << o << " " << sl;
+            EXPECT_EQ(bits(a.tau), bits(b.tau)) << o << " " << sl;
+            EXPECT_EQ(bits(a.fs), bits(b.fs));
+            EXPECT_EQ(b.z, 1.0);
+        } else {
+            ++outside;
+            EXPECT_GT(dmax, 0.0);  // the general law damages exactly when the fast path refuses
+        }
+    }
+    EXPECT_GT(inside, 5000);
+    EXPECT_GT(outside, 1000);
 }
 
 TEST(JointLaw, SofteningLengthRules) {
