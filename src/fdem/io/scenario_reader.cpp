@@ -16,13 +16,14 @@
 
 #include <fmt/format.h>
 
+#include "contact/checks.hpp"
+#include "contact/contact.hpp"
 #include "fdem/build.hpp"
 #include "fdem/error.hpp"
 #include "fdem/mesh.hpp"
-#include "contact/checks.hpp"
 #include "fdem/scenario.hpp"
-#include "contact/contact.hpp"
 #include "io/toml_fields.hpp"
+#include "model/renumber.hpp"
 
 namespace fdem {
 
@@ -186,7 +187,14 @@ public:
 
         // derived data (the model builder's own checks keep their messages)
         try {
-            finalize_model(sc.model);
+            std::vector<int32_t> node_new;
+            finalize_model(sc.model, node_new);
+            // the entries' mesh-node maps follow the spatial renumbering (a [[probe]] group is
+            // looked up through them after this; a body of >= 4096 triangles is renumbered)
+            for (BodyEntry& e : bodies_) {
+                for (NodeId& n : e.node_map.model_nodes)
+                    n = node_new[static_cast<size_t>(n)];
+            }
         } catch (const InputError& e) {
             if (!e.location().file.empty()) {
                 throw;

@@ -300,9 +300,15 @@ MeshNodeMap add_bodies_mapped(Model& m, const MeshData& mesh, const std::vector<
 }
 
 void finalize_model(Model& m) {
+    std::vector<int32_t> node_new;
+    finalize_model(m, node_new);
+}
+
+void finalize_model(Model& m, std::vector<int32_t>& node_new) {
     for (Material& mat : m.materials)
         compute_lame(mat);
-    renumber_spatially(m);  // first: everything below is derived from the final numbering
+    // first: everything below is derived from the final numbering
+    renumber_spatially(m, &node_new);
 
     const size_t nn = static_cast<size_t>(m.num_nodes());
     const size_t nt = static_cast<size_t>(m.num_tris());

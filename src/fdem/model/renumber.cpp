@@ -32,7 +32,7 @@ void permute(std::vector<T>& a, const std::vector<int32_t>& new_of_old, size_t l
 
 }  // namespace
 
-bool renumber_spatially(Model& m) {
+bool renumber_spatially(Model& m, std::vector<int32_t>* node_new_out) {
     const size_t nn = static_cast<size_t>(m.num_nodes());
     std::vector<int32_t> node_new(nn);  // old node id -> new node id
     std::iota(node_new.begin(), node_new.end(), 0);
@@ -103,6 +103,7 @@ bool renumber_spatially(Model& m) {
         permute(m.node_v0, node_new, static_cast<size_t>(body.node_begin),
                 static_cast<size_t>(body.node_end));
     }
+    if (node_new_out) *node_new_out = node_new;
     if (!changed) return false;
 
     for (BoundaryCondition& bc : m.bcs) {

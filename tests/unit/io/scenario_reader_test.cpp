@@ -371,3 +371,49 @@ TEST(LoadScenario, DocumentedExampleIsValid) {
 
 }  // namespace
 }  // namespace fdem
+
+namespace fdem {
+namespace {
+
+// A [[probe]] group is looked up after finalize_model(), which renumbers the nodes of a body of
+// >= 4096 triangles (kRenumberMinTris): the probe must still get the group's nodes (before the
+// fix the "tip" probe of this 9326-triangle bar sat at (0.0225, 0.078) instead of (1, 0.05)).
+TEST(LoadScenario, ProbeGroupOnARenumberedBody) {
+    const std::string text = R"(
+[simulation]
+end_time = 2e-4
+dt = "auto"
+[[material]]
+name = "m"
+density = 1000
+youngs_modulus = 1e6
+poisson_ratio = 0.2
+[[body]]
+name = "bar"
+mesh = "loaded_bar.geo"
+mesh_size = 0.005
+material = "m"
+[[probe]]
+name = "tip"
+body = "bar"
+group = "tip"
+[[probe]]
+name = "left"
+body = "bar"
+group = "left"
+)";
+    const Scenario sc = load_scenario_from_string(text, "probe.toml", kData);
+    ASSERT_GE(sc.model.num_tris(), 4096);  // renumbered
+    ASSERT_EQ(sc.run.output.probes.size(), 2u);
+    const ProbeSpec& tip = sc.run.output.probes[0];
+    ASSERT_EQ(tip.nodes.size(), 1u);
+    EXPECT_EQ(sc.model.node_x0[static_cast<size_t>(tip.nodes[0])].x, 1.0);
+    EXPECT_EQ(sc.model.node_x0[static_cast<size_t>(tip.nodes[0])].y, 0.05);
+    const ProbeSpec& left = sc.run.output.probes[1];
+    ASSERT_GE(left.nodes.size(), 20u);  // 0.1 m at mesh_size 0.005
+    for (const NodeId n : left.nodes)
+        EXPECT_EQ(sc.model.node_x0[static_cast<size_t>(n)].x, 0.0) << n;
+}
+
+}  // namespace
+}  // namespace fdem
