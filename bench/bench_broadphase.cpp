@@ -16,19 +16,19 @@ void run_broad_phase(benchmark::State& st, BroadKernel kernel) {
     const Model& m = bench::cached_pack(st.range(0), false);
     State s = make_state(m, 0.5 * stable_time_step(m));
     update_virtual_nodes(m, s);
-    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad,
+    find_candidates(m, s.topology, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad,
                     kernel);  // warm-up: sizes
     for (auto _ : st) {
         update_virtual_nodes(m, s);
-        find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad,
-                        kernel);
+        find_candidates(m, s.topology, s.x.data(), s.contact.xv.data(), s.contact.cand,
+                        s.contact.broad, kernel);
     }
     st.SetItemsProcessed(st.iterations() * m.num_tris());
     st.counters["omp_threads"] = 1;
     st.counters["s_per_tri"] =
         benchmark::Counter(static_cast<double>(st.iterations()) * m.num_tris(),
                            benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-    st.counters["sub_tris"] = m.contact.num_sub_tris();
+    st.counters["sub_tris"] = s.topology.num_sub_tris();
     st.counters["pairs"] = static_cast<double>(s.contact.cand.node.size());
 }
 

@@ -45,11 +45,11 @@ void BM_NarrowPhase(benchmark::State& st) {
     int64_t survivors = 0;
     for (size_t p = 0; p < s.contact.cand.node.size(); ++p) {
         survivors += !box_rejects(s.contact.body_box[s.contact.cand.body[p]],
-                                  target_point(m.contact, s.x.data(), s.contact.cand.node[p]));
+                                  target_point(s.topology, s.x.data(), s.contact.cand.node[p]));
     }
     st.counters["box_pass"] = static_cast<double>(survivors) / pairs;
-    st.counters["sub_tris"] = m.contact.num_sub_tris();
-    st.counters["virtual"] = m.contact.num_virtual();
+    st.counters["sub_tris"] = s.topology.num_sub_tris();
+    st.counters["virtual"] = s.topology.num_virtual();
     st.counters["bodies"] = m.num_bodies();
 }
 
@@ -146,10 +146,10 @@ void BM_BodyBoxes(benchmark::State& st) {
     const bool ref = st.range(2) != 0;
     for (auto _ : st) {
         if (ref) {
-            body_boxes_reference(m.contact, s.x.data(), s.contact.xv.data(), box.data(),
+            body_boxes_reference(s.topology, s.x.data(), s.contact.xv.data(), box.data(),
                                  m.num_bodies());
         } else {
-            body_boxes(m.contact, s.x.data(), s.contact.xv.data(), box.data(), m.num_bodies());
+            body_boxes(s.topology, s.x.data(), s.contact.xv.data(), box.data(), m.num_bodies());
         }
         benchmark::DoNotOptimize(box.data());
         benchmark::ClobberMemory();

@@ -46,7 +46,8 @@ inline PhaseTimes time_phases(const Model& m, const State& s, int reps) {
         if (m.contact.algorithm == ContactAlgorithm::None) continue;
         t0 = clock::now();
         update_virtual_nodes(m, c);
-        find_candidates(m, c.x.data(), c.contact.xv.data(), c.contact.cand, c.contact.broad);
+        find_candidates(m, c.topology, c.x.data(), c.contact.xv.data(), c.contact.cand,
+                        c.contact.broad);
         t1 = clock::now();
         best_b = std::min(best_b, secs(t0, t1));
         c.contact.need_rebuild = false;

@@ -3,9 +3,11 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "fdem/contact_topology.hpp"
 #include "fdem/mesh.hpp"
 #include "fdem/model.hpp"
 
@@ -59,9 +61,24 @@ struct MeshNodeMap {
 MeshNodeMap add_bodies_mapped(Model& m, const MeshData& mesh, const std::vector<int32_t>& tri_ids,
                               const BodyOptions& opt);
 
-/// Compute everything derived: reference geometry, lumped masses, element viscosity,
-/// contact m_bar and topology. Call once after all bodies, materials and BCs are added.
+/// Compute everything derived: reference geometry, lumped masses, element viscosity and the
+/// resolved contact parameters (m_bar, buffer, pair laws). Call once after all bodies, materials
+/// and BCs are added. The contact topology is not part of the Model: build_topology().
 void finalize_model(Model& m);
+
+/// The contact topology of m's bodies (fdem/contact_topology.hpp; docs/theory.md §6.1-6.2,
+/// §6.11-6.12): make_state() stores it in State::topology. Throws InputError for a mesh the
+/// contact cannot use (an edge shared by three triangles, a composite element off the layout or
+/// too distorted for the fan of option (b)).
+ContactTopology build_topology(const Model& m);
+/// The same into t.
+void build_topology(const Model& m, ContactTopology& t);
+/// Rebuild t, a topology of m's bodies, for the bodies `dirty` whose mesh changed (e.g. broken
+/// joints): those are built anew, the others are copied with their virtual node and boundary
+/// edge ids renumbered, then the passes over all bodies (contact node lists, target scales,
+/// edge targets) run again. Gives bitwise the arrays build_topology(m) gives (tested). Throws
+/// std::invalid_argument for a body id out of range.
+void rebuild_topology(const Model& m, std::span<const BodyId> dirty, ContactTopology& t);
 
 /// Effective 2-D Lame constants of a material (docs/theory.md eq. 2.5).
 void compute_lame(Material& mat);
@@ -71,6 +88,8 @@ void compute_lame(Material& mat);
 /// 1 / sqrt(1/dt_e^2 + 1/dt_c^2) (eq. 6.17: both stiffnesses act on the boundary nodes).
 /// limiting_tri receives the element that sets dt_e when dt_e <= dt_c, kNone when the contact
 /// bound governs.
+Real stable_time_step(const Model& m, const ContactTopology& t, TriId* limiting_tri = nullptr);
+/// The same with the topology built here (build_topology(m)).
 Real stable_time_step(const Model& m, TriId* limiting_tri = nullptr);
 
 /// The element part of stable_time_step(): min over the movable triangles of h_min / c_p

@@ -1,6 +1,6 @@
-// Contact parameters and the immutable contact topology of a model (paper §2, spec §4).
-// The topology (boundary entities, virtual nodes, contactor sub-triangles, nodal distances) is
-// derived from the mesh once by build_contact_topology() and never changes during a run.
+// Contact parameters of a model (paper §2, spec §4): the law per material pair and the options
+// of the contact algorithm, resolved once by finalize_model() and read-only afterwards. The
+// contact topology, which can change during a run, is in fdem/contact_topology.hpp.
 #pragma once
 
 #include <array>
@@ -72,14 +72,12 @@ struct LegacyBoundaryTri {
     Real h_ref = 0;  ///< H_ref of the owning body [m] (amplitude of d_B = H_ref phi_B)
 };
 
-/// Contact data of a model. The first block is user input (scenario reader); everything below
-/// "derived" is written by build_contact_topology() and is read-only afterwards.
-///
-/// Node ids used by the contact code: [0, num_real_nodes) are the model's nodes; ids
-/// num_real_nodes + v are virtual node v (chord midpoints and single-triangle incenters, spec
-/// §4.4; composite special cases, docs/theory.md §6.1.1). A virtual node has no mass and no
-/// DOF: its position/velocity is sum_k w_k x_{parent_k} and a force on it goes to the parents
-/// with the same weights.
+/// Contact parameters of a model. The first block is user input (scenario reader); the second
+/// is filled by resolve_contact_params() (called by finalize_model()), after which no field holds
+/// a "use the default" value (penalty 0, tangential_penalty < 0, buffer 0, m_bar 0). The contact
+/// topology (boundary, virtual nodes, sub-triangles, nodal distances, target scales) is not
+/// here: it can change during a run (fracture) and lives in State::topology
+/// (fdem/contact_topology.hpp).
 struct ContactModel {
     ContactAlgorithm algorithm = ContactAlgorithm::None;
     ContactParams params;  ///< default for every material pair
@@ -95,7 +93,8 @@ struct ContactModel {
     /// false (one-way): each pair of bodies is evaluated once. If exactly one of the two is
     /// fixed, the fixed body is the contactor and the free body's boundary nodes are the
     /// targets (a rigid platform under a block); otherwise the lower body index is the
-    /// contactor. Two fixed bodies never interact. See is_contactor_for() below.
+    /// contactor. Two fixed bodies never interact. See is_contactor_for()
+    /// (fdem/contact_topology.hpp).
     bool two_way = true;
     Real m_bar = 0;  ///< smallest element mass [kg/m] over all bodies incl. fixed ones (eq. 19)
     Real deep_ratio_limit = 0.5;  ///< d / (largest nodal distance of the triangle) counted as deep
@@ -112,7 +111,7 @@ struct ContactModel {
     /// prestress ("allow"). Read by the scenario loader only (docs/theory.md §6.14).
     bool allow_initial_overlap = false;
 
-    // ---- derived (build_contact_topology) -------------------------------------------------
+    // ---- resolved (resolve_contact_params) -------------------------------------------------
     /// Laws resolved (every default filled in) per pair of material classes: class 0 = every
     /// material in no override, classes 1..k = the materials named in pair_overrides. Indexed
     /// [class of contactor material * num_classes + class of target material]; (k + 1)^2
@@ -122,117 +121,7 @@ struct ContactModel {
     int32_t num_classes = 0;
     int32_t num_materials = 0;
     Real h_min = 0;  ///< smallest element altitude of the mesh [m]
-
-    /// Scale of the force on each real node as a target: m_j / m_bar (ContactScaling::Mass) or
-    /// l_j / l_bar (Length); 0 for nodes that are not on a boundary (Length only).
-    std::vector<Real> node_scale;
-    Real l_bar = 0;  ///< smallest boundary edge over all bodies [m] (ContactScaling::Length)
-    /// Mass of the single-DOF bound of the stable dt: min over movable boundary nodes of
-    /// m_j / node_scale[j] (= m_bar for ContactScaling::Mass, docs/theory.md §6.11)
-    Real m_dt = 0;
-
-    /// Edge targets (docs/theory.md §6.12): target id edge_target_base + e is the midpoint of
-    /// boundary_edges[e], its force goes half to each end node and edge_scale[e] is its force
-    /// scale (eq. 6.19); then node_scale holds the share the boundary nodes keep. edge_scale is
-    /// empty without edge targets. Target ids: [0, num_real_nodes) boundary nodes, then
-    /// [edge_target_base, target_end()) edge midpoints (edge_target_base = num_contact_nodes()).
-    NodeId edge_target_base = 0;
-    std::vector<Real> edge_scale;
-    /// target-side factor of the stable dt (eq. 6.15): largest row sum of the target stiffness
-    /// over the node mass, in units of k / m_dt; 1 without edge targets (docs/theory.md §6.12)
-    Real target_dt_factor = 1;
-
-    int32_t num_real_nodes = 0;                      ///< = Model::num_nodes()
-    std::vector<std::array<NodeId, 3>> virt_parent;  ///< parents of each virtual node
-    std::vector<std::array<Real, 3>> virt_weight;    ///< frozen weights (sum 1)
-
-    /// Nodal contact distance [m] (eqs. 1-2 + spec §4.2 fallback), indexed by contact node id
-    /// (real then virtual). 0 on boundary nodes; 0 also for inner nodes of non-boundary elements
-    /// (they never appear in a contactor triangle).
-    std::vector<Real> node_dist;
-    /// the boundary edge that gave node_dist (eq. 6.3 candidate or fallback), -1 for boundary
-    /// nodes and unused nodes (load-time check of thin bodies, docs/theory.md §6.13)
-    std::vector<int32_t> node_dist_edge;
-    std::vector<uint8_t> node_on_boundary;  ///< per real node: 1 = boundary node
-    int32_t num_fallback_nodes = 0;         ///< nodes whose distance came from the fallback
-
-    std::vector<uint8_t> body_fixed;  ///< per body (copy of Body::fixed for the role rule)
-
-    /// Boundary nodes (targets) of all bodies, ascending ids; those of body b are
-    /// [body_bnode_begin[b], body_bnode_begin[b+1]).
-    std::vector<NodeId> boundary_nodes;
-    std::vector<int32_t> body_bnode_begin;
-    /// Boundary edges, oriented as in their (counter-clockwise) triangle: material on the left.
-    std::vector<std::array<NodeId, 2>> boundary_edges;
-    std::vector<int32_t> body_bedge_begin;
-    /// interior edges joining two boundary nodes (in a composite body: the central sub-triangle's
-    /// edges of composites in the special cases; they get a virtual node only with Split)
-    std::vector<std::array<NodeId, 2>> chords;
-    std::vector<TriId> boundary_tris;  ///< elements with >= 1 boundary node
-
-    /// Contactor sub-triangles (counter-clockwise, contact node ids); those of body b are
-    /// [body_sub_begin[b], body_sub_begin[b+1]).
-    std::vector<std::array<NodeId, 3>> sub_tri;
-    std::vector<BodyId> sub_body;
-    /// mesh triangle the sub-triangle was cut from; for a composite fan triangle (which may
-    /// cross mesh sub-triangles) the mesh sub-triangle holding its boundary half-edge
-    std::vector<TriId> sub_parent;
-    std::vector<int32_t> body_sub_begin;
-
-    /// Distinct contact nodes of each body's sub-triangles, for the narrow phase's per-step body
-    /// boxes (contact.cpp body_boxes()): those of body b are body_cnode[body_cnode_begin[b] ..
-    /// body_cnode_begin[b+1]), its body_cnode_nreal[b] real node ids first (ascending), then its
-    /// virtual ones (contact ids, ascending). sub_local[t] = the positions of sub_tri[t]'s
-    /// vertices in its body's list (0 = body_cnode_begin[b]). build_body_contact_nodes().
-    std::vector<NodeId> body_cnode;
-    std::vector<int32_t> body_cnode_begin;
-    std::vector<int32_t> body_cnode_nreal;
-    std::vector<std::array<int32_t, 3>> sub_local;
-
-    /// Baseline B only (ContactAlgorithm::LegacyBoundary): phi_B per contactor sub-triangle,
-    /// parallel to sub_tri (build_legacy_boundary_field(), docs/theory.md §7.4); empty otherwise.
-    std::vector<LegacyBoundaryTri> sub_legacy_b;
-
-    int32_t num_virtual() const { return static_cast<int32_t>(virt_parent.size()); }
-    int32_t num_contact_nodes() const { return num_real_nodes + num_virtual(); }
-    int32_t num_sub_tris() const { return static_cast<int32_t>(sub_tri.size()); }
-    int32_t num_edge_targets() const { return static_cast<int32_t>(edge_scale.size()); }
-    NodeId target_end() const { return edge_target_base + num_edge_targets(); }
 };
-
-/// A real node of target t (docs/theory.md §6.12): t itself for a boundary node, the first end
-/// node of the edge for an edge target (same body; used for body look-ups and messages).
-inline NodeId target_node(const ContactModel& cm, NodeId t) {
-    if (t < cm.num_real_nodes) return t;
-    return cm.boundary_edges[static_cast<size_t>(t - cm.edge_target_base)][0];
-}
-
-/// Position (or velocity, with v for x) of target t: the node, or the edge midpoint
-/// (x_a + x_b) / 2 of an edge target.
-inline Vec2 target_point(const ContactModel& cm, const Vec2* x, NodeId t) {
-    if (t < cm.num_real_nodes) return x[t];
-    const auto& e = cm.boundary_edges[static_cast<size_t>(t - cm.edge_target_base)];
-    return 0.5 * (x[e[0]] + x[e[1]]);
-}
-
-/// Force scale of target t: m_j / mbar (eq. 19) or l_j / lbar, with edge targets the node's
-/// share of it, or edge_scale of an edge target (eq. 6.19).
-inline Real target_scale(const ContactModel& cm, NodeId t) {
-    if (t < cm.num_real_nodes) return cm.node_scale[static_cast<size_t>(t)];
-    return cm.edge_scale[static_cast<size_t>(t - cm.edge_target_base)];
-}
-
-/// Does body c act as contactor for the boundary nodes of body t? (role rule of
-/// ContactModel::two_way). Never true for c == t.
-inline bool is_contactor_for(const ContactModel& cm, BodyId c, BodyId t) {
-    if (c == t) return false;
-    const bool fc = cm.body_fixed[static_cast<size_t>(c)] != 0;
-    const bool ft = cm.body_fixed[static_cast<size_t>(t)] != 0;
-    if (fc && ft) return false;  // two fixed bodies: forces would move nothing
-    if (cm.two_way) return true;
-    if (fc != ft) return fc;
-    return c < t;
-}
 
 /// Resolved parameters for contactor body material a and target body material b.
 inline const ContactParams& pair_parameters(const ContactModel& cm, int32_t a, int32_t b) {

@@ -49,6 +49,10 @@ struct SetValues {
 /// same for any thread count. The constructor allocates; accumulate() and evaluate() do not.
 class Resultants {
 public:
+    /// The node sets of m; ct (State::topology) tells which nodes can carry a contact force.
+    /// A topology rebuilt during the run (new boundary) needs a new Resultants.
+    Resultants(const Model& m, const ContactTopology& ct);
+    /// The same with the topology of the unbroken bodies (build_topology(m)).
     explicit Resultants(const Model& m);
 
     int32_t num_sets() const { return static_cast<int32_t>(sets_.size()); }

@@ -1,5 +1,6 @@
 // Model: everything that does not change during a run (mesh, materials, derived geometry,
-// boundary conditions, contact topology). Built once by build_model() and then read-only.
+// boundary conditions, contact parameters). Built once by build_model() and then read-only.
+// The contact topology, which can change during a run, is State::topology.
 //
 // Layout (style guide §4.4): one flat array per field, indexed by the id named in its prefix.
 // Nodes of a body are contiguous, triangles of a body are contiguous, and bodies never share nodes.
@@ -148,7 +149,7 @@ struct Model {
     MassDamping mass_damping;
     Vec2 gravity;  ///< [m/s^2]
 
-    ContactModel contact;              ///< contact parameters and topology (contact_model.hpp)
+    ContactModel contact;              ///< contact parameters (contact_model.hpp)
     ElementSchedule element_schedule;  ///< derived: parallel element loop (element/cst.hpp)
 
     int32_t num_nodes() const { return static_cast<int32_t>(node_x0.size()); }

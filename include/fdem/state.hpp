@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "fdem/contact_state.hpp"
+#include "fdem/contact_topology.hpp"
 #include "fdem/math.hpp"
 
 namespace fdem {
@@ -70,6 +71,12 @@ struct State {
     bool need_energy = true;
 
     ContactState contact;  ///< pair history, candidate lists, scratch (contact_state.hpp)
+    /// The contact topology (boundary, virtual nodes, sub-triangles, nodal distances, target
+    /// scales) of the bodies as they are now: built from the Model by make_state()
+    /// (build_topology()), rebuilt for the bodies whose mesh changed (rebuild_topology()). Not
+    /// saved in checkpoints: a function of the Model (and, with fracture, of the saved joint
+    /// state), rebuilt on restore. docs/architecture.md "The contact topology".
+    ContactTopology topology;
 };
 
 }  // namespace fdem

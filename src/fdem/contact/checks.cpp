@@ -21,19 +21,19 @@ Real point_segment_distance(Vec2 x, Vec2 a, Vec2 b) {
 }
 
 // outward unit normal of boundary edge e (material on its left: the normal is on its right)
-Vec2 outward_normal(const Model& m, int32_t e) {
-    const auto& be = m.contact.boundary_edges[static_cast<size_t>(e)];
+Vec2 outward_normal(const Model& m, const ContactTopology& ct, int32_t e) {
+    const auto& be = ct.boundary_edges[static_cast<size_t>(e)];
     const Vec2 t = m.node_x0[be[1]] - m.node_x0[be[0]];
     const Real l = norm(t);
     return l > 0 ? Vec2{t.y / l, -t.x / l} : Vec2{};
 }
 
-Vec2 contact_x0(const ContactModel& cm, const Model& m, NodeId i) {
-    if (i < cm.num_real_nodes) return m.node_x0[i];
-    const size_t v = static_cast<size_t>(i - cm.num_real_nodes);
+Vec2 contact_x0(const ContactTopology& ct, const Model& m, NodeId i) {
+    if (i < ct.num_real_nodes) return m.node_x0[i];
+    const size_t v = static_cast<size_t>(i - ct.num_real_nodes);
     Vec2 x;
     for (int k = 0; k < 3; ++k)
-        x += cm.virt_weight[v][k] * m.node_x0[cm.virt_parent[v][k]];
+        x += ct.virt_weight[v][k] * m.node_x0[ct.virt_parent[v][k]];
     return x;
 }
 
@@ -42,11 +42,10 @@ struct Box {
 };
 
 // even-odd test of p against the boundary edges of body b (holes included), reference positions
-bool inside(const Model& m, BodyId b, Vec2 p) {
-    const ContactModel& cm = m.contact;
+bool inside(const Model& m, const ContactTopology& ct, BodyId b, Vec2 p) {
     bool in = false;
-    for (int32_t e = cm.body_bedge_begin[b]; e < cm.body_bedge_begin[b + 1]; ++e) {
-        const Vec2 a = m.node_x0[cm.boundary_edges[e][0]], c = m.node_x0[cm.boundary_edges[e][1]];
+    for (int32_t e = ct.body_bedge_begin[b]; e < ct.body_bedge_begin[b + 1]; ++e) {
+        const Vec2 a = m.node_x0[ct.boundary_edges[e][0]], c = m.node_x0[ct.boundary_edges[e][1]];
         if ((a.y > p.y) != (c.y > p.y)) {
             const Real xc = a.x + (p.y - a.y) * (c.x - a.x) / (c.y - a.y);
             if (p.x < xc) in = !in;
@@ -55,24 +54,23 @@ bool inside(const Model& m, BodyId b, Vec2 p) {
     return in;
 }
 
-Real boundary_distance(const Model& m, BodyId b, Vec2 p) {
-    const ContactModel& cm = m.contact;
+Real boundary_distance(const Model& m, const ContactTopology& ct, BodyId b, Vec2 p) {
     Real d = std::numeric_limits<Real>::infinity();
-    for (int32_t e = cm.body_bedge_begin[b]; e < cm.body_bedge_begin[b + 1]; ++e) {
-        d = std::min(d, point_segment_distance(p, m.node_x0[cm.boundary_edges[e][0]],
-                                               m.node_x0[cm.boundary_edges[e][1]]));
+    for (int32_t e = ct.body_bedge_begin[b]; e < ct.body_bedge_begin[b + 1]; ++e) {
+        d = std::min(d, point_segment_distance(p, m.node_x0[ct.boundary_edges[e][0]],
+                                               m.node_x0[ct.boundary_edges[e][1]]));
     }
     return d;
 }
 
 }  // namespace
 
-InitialOverlap find_initial_overlap(const Model& m) {
+InitialOverlap find_initial_overlap(const Model& m, const ContactTopology& ct) {
     const ContactModel& cm = m.contact;
     InitialOverlap best;
     const BodyId nb = m.num_bodies();
     if (cm.algorithm == ContactAlgorithm::None || nb < 2 ||
-        cm.body_bedge_begin.size() != static_cast<size_t>(nb) + 1) {
+        ct.body_bedge_begin.size() != static_cast<size_t>(nb) + 1) {
         return best;
     }
     best.tolerance = kOverlapTolerance * cm.h_min;
@@ -92,7 +90,7 @@ InitialOverlap find_initial_overlap(const Model& m) {
     }
     // boundary elements per body (boundary_tris ascending, bodies own contiguous triangles)
     std::vector<int32_t> btri_begin(static_cast<size_t>(nb) + 1, 0);
-    for (TriId t : cm.boundary_tris)
+    for (TriId t : ct.boundary_tris)
         ++btri_begin[static_cast<size_t>(m.tri_body[t]) + 1];
     std::partial_sum(btri_begin.begin(), btri_begin.end(), btri_begin.begin());
 
@@ -101,8 +99,8 @@ InitialOverlap find_initial_overlap(const Model& m) {
     };
     auto test = [&](BodyId a, BodyId b, Vec2 p, InitialOverlap::Point kind, NodeId node,
                     int32_t edge, TriId tri) {
-        if (!in_box(box[b], p) || !inside(m, b, p)) return;
-        const Real d = boundary_distance(m, b, p);
+        if (!in_box(box[b], p) || !inside(m, ct, b, p)) return;
+        const Real d = boundary_distance(m, ct, b, p);
         if (!(d > tol) || (best.found && !(d > best.depth))) return;
         best.found = true;
         best.body = a;
@@ -117,17 +115,17 @@ InitialOverlap find_initial_overlap(const Model& m) {
     // points of body a inside body b: boundary nodes, boundary-edge midpoints, centroids of
     // boundary elements (the last ones find coincident meshes, whose boundaries coincide)
     auto points_of_in = [&](BodyId a, BodyId b) {
-        for (int32_t k = cm.body_bnode_begin[a]; k < cm.body_bnode_begin[a + 1]; ++k) {
-            const NodeId i = cm.boundary_nodes[k];
+        for (int32_t k = ct.body_bnode_begin[a]; k < ct.body_bnode_begin[a + 1]; ++k) {
+            const NodeId i = ct.boundary_nodes[k];
             test(a, b, m.node_x0[i], InitialOverlap::Point::Node, i, -1, kNone);
         }
-        for (int32_t e = cm.body_bedge_begin[a]; e < cm.body_bedge_begin[a + 1]; ++e) {
-            const auto& be = cm.boundary_edges[e];
+        for (int32_t e = ct.body_bedge_begin[a]; e < ct.body_bedge_begin[a + 1]; ++e) {
+            const auto& be = ct.boundary_edges[e];
             test(a, b, 0.5 * (m.node_x0[be[0]] + m.node_x0[be[1]]),
                  InitialOverlap::Point::EdgeMidpoint, be[0], e, kNone);
         }
         for (int32_t k = btri_begin[a]; k < btri_begin[a + 1]; ++k) {
-            const TriId t = cm.boundary_tris[k];
+            const TriId t = ct.boundary_tris[k];
             const auto& n = m.tri_nodes[t];
             const Vec2 c = (m.node_x0[n[0]] + m.node_x0[n[1]] + m.node_x0[n[2]]) / 3.0;
             test(a, b, c, InitialOverlap::Point::Centroid, n[0], -1, t);
@@ -145,7 +143,7 @@ InitialOverlap find_initial_overlap(const Model& m) {
         for (size_t j = i + 1; j < order.size() && box[order[j]].lo.x < box[a].hi.x; ++j) {
             const BodyId b = order[j];
             if (box[b].lo.y >= box[a].hi.y || box[a].lo.y >= box[b].hi.y) continue;
-            if (cm.body_fixed[a] && cm.body_fixed[b]) continue;  // never interact
+            if (ct.body_fixed[a] && ct.body_fixed[b]) continue;  // never interact
             pairs.emplace_back(std::min(a, b), std::max(a, b));
         }
     }
@@ -157,14 +155,14 @@ InitialOverlap find_initial_overlap(const Model& m) {
     return best;
 }
 
-std::vector<ThinLayer> find_thin_layers(const Model& m) {
+std::vector<ThinLayer> find_thin_layers(const Model& m, const ContactTopology& ct) {
     const ContactModel& cm = m.contact;
     std::vector<ThinLayer> out;
-    if (cm.algorithm != ContactAlgorithm::Smooth || cm.node_dist_edge.empty()) return out;
+    if (cm.algorithm != ContactAlgorithm::Smooth || ct.node_dist_edge.empty()) return out;
     // boundary edges at each real node (CSR)
     const size_t nn = static_cast<size_t>(m.num_nodes());
     std::vector<int32_t> begin(nn + 1, 0), edges;
-    for (const auto& be : cm.boundary_edges) {
+    for (const auto& be : ct.boundary_edges) {
         ++begin[static_cast<size_t>(be[0]) + 1];
         ++begin[static_cast<size_t>(be[1]) + 1];
     }
@@ -172,43 +170,43 @@ std::vector<ThinLayer> find_thin_layers(const Model& m) {
     edges.resize(static_cast<size_t>(begin[nn]));
     {
         std::vector<int32_t> cur(begin.begin(), begin.end() - 1);
-        for (int32_t e = 0; e < static_cast<int32_t>(cm.boundary_edges.size()); ++e) {
-            for (NodeId i : cm.boundary_edges[e])
+        for (int32_t e = 0; e < static_cast<int32_t>(ct.boundary_edges.size()); ++e) {
+            for (NodeId i : ct.boundary_edges[e])
                 edges[static_cast<size_t>(cur[i]++)] = e;
         }
     }
     for (BodyId b = 0; b < m.num_bodies(); ++b) {
         ThinLayer worst;
         worst.body = b;
-        for (int32_t s = cm.body_sub_begin[b]; s < cm.body_sub_begin[b + 1]; ++s) {
-            const auto& q = cm.sub_tri[s];
+        for (int32_t s = ct.body_sub_begin[b]; s < ct.body_sub_begin[b + 1]; ++s) {
+            const auto& q = ct.sub_tri[s];
             for (NodeId o : q) {
-                const bool bnode = o < cm.num_real_nodes && cm.node_on_boundary[o];
-                const int32_t src = cm.node_dist_edge[static_cast<size_t>(o)];
+                const bool bnode = o < ct.num_real_nodes && ct.node_on_boundary[o];
+                const int32_t src = ct.node_dist_edge[static_cast<size_t>(o)];
                 if (bnode || src < 0) continue;
-                const Vec2 n_src = outward_normal(m, src);
-                const Vec2 xo = contact_x0(cm, m, o);
+                const Vec2 n_src = outward_normal(m, ct, src);
+                const Vec2 xo = contact_x0(ct, m, o);
                 // the faces the sub-triangle touches: boundary edges at its boundary vertices
                 bool any = false, opposite = true;
                 Real near = std::numeric_limits<Real>::infinity();
                 for (NodeId v : q) {
-                    if (v >= cm.num_real_nodes || !cm.node_on_boundary[v]) continue;
+                    if (v >= ct.num_real_nodes || !ct.node_on_boundary[v]) continue;
                     for (int32_t k = begin[v]; k < begin[v + 1]; ++k) {
                         const int32_t e = edges[static_cast<size_t>(k)];
                         any = true;
                         // more than 120 degrees apart: a corner (90 degrees) is not "opposite"
-                        if (dot(outward_normal(m, e), n_src) >= -0.5) opposite = false;
-                        const auto& be = cm.boundary_edges[e];
+                        if (dot(outward_normal(m, ct, e), n_src) >= -0.5) opposite = false;
+                        const auto& be = ct.boundary_edges[e];
                         near = std::min(
                             near, point_segment_distance(xo, m.node_x0[be[0]], m.node_x0[be[1]]));
                     }
                 }
-                const Real d = cm.node_dist[static_cast<size_t>(o)];
+                const Real d = ct.node_dist[static_cast<size_t>(o)];
                 // only where the far face gives a clearly smaller distance (a tie tilts nothing)
                 if (!any || !opposite || !(d < kThinLayerRatio * near)) continue;
                 ++worst.count;
                 if (worst.tri == kNone || near / d > worst.near_dist / worst.dist) {
-                    worst.tri = cm.sub_parent[s];
+                    worst.tri = ct.sub_parent[s];
                     worst.node = o;
                     worst.edge = src;
                     worst.dist = d;
@@ -221,13 +219,12 @@ std::vector<ThinLayer> find_thin_layers(const Model& m) {
     return out;
 }
 
-std::string thin_layer_warning(const Model& m, const ThinLayer& t) {
-    const ContactModel& cm = m.contact;
-    const auto& be = cm.boundary_edges[static_cast<size_t>(t.edge)];
-    const std::string node = t.node < cm.num_real_nodes
+std::string thin_layer_warning(const Model& m, const ContactTopology& ct, const ThinLayer& t) {
+    const auto& be = ct.boundary_edges[static_cast<size_t>(t.edge)];
+    const std::string node = t.node < ct.num_real_nodes
                                  ? fmt::format("node {}", t.node)
                                  : fmt::format("virtual node {} (chord midpoint or incenter)",
-                                               t.node - cm.num_real_nodes);
+                                               t.node - ct.num_real_nodes);
     return fmt::format(
         "warning: body {} \"{}\" is too thin for its contact layer: in {} boundary "
         "sub-triangle(s) an inner node takes its contact distance from the opposite face, e.g. "

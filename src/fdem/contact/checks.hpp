@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "fdem/contact_topology.hpp"
 #include "fdem/model.hpp"
 
 namespace fdem {
@@ -20,7 +21,7 @@ struct InitialOverlap {
     BodyId other = kNone;  ///< the body it lies inside
     Point point = Point::Node;
     NodeId node = kNone;  ///< the boundary node, or the first node of the edge / element
-    int32_t edge = -1;    ///< Point::EdgeMidpoint: boundary edge (ContactModel::boundary_edges)
+    int32_t edge = -1;    ///< Point::EdgeMidpoint: boundary edge (ContactTopology::boundary_edges)
     TriId tri = kNone;    ///< Point::Centroid: the element
     Vec2 where;           ///< the point [m]
     Real depth = 0;       ///< its distance to the boundary of `other` [m]
@@ -37,7 +38,7 @@ constexpr Real kOverlapTolerance = 1e-6;
 /// edges and the distance to them; a point counts when it is inside and deeper than the
 /// tolerance. Two fixed bodies are not compared (they never interact). Serial, deterministic:
 /// the deepest point, the first in (body, point) order on ties. found = false when none.
-InitialOverlap find_initial_overlap(const Model& m);
+InitialOverlap find_initial_overlap(const Model& m, const ContactTopology& ct);
 
 /// An inner node counts as taking its distance from the far face when that distance is below
 /// kThinLayerRatio x its distance to the faces its sub-triangle touches (docs/theory.md §6.13).
@@ -58,9 +59,9 @@ struct ThinLayer {
 
 /// Every body with such sub-triangles, one entry per body (the one with the largest
 /// near_dist / dist), ascending body ids.
-std::vector<ThinLayer> find_thin_layers(const Model& m);
+std::vector<ThinLayer> find_thin_layers(const Model& m, const ContactTopology& ct);
 
 /// The warning text of fdem check / fdem run for one finding.
-std::string thin_layer_warning(const Model& m, const ThinLayer& t);
+std::string thin_layer_warning(const Model& m, const ContactTopology& ct, const ThinLayer& t);
 
 }  // namespace fdem

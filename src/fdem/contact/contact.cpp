@@ -8,6 +8,7 @@
 // is bitwise the same for any thread count. Baseline A (ContactAlgorithm::LegacyTriangle) goes
 // to legacy_triangle.cpp; baseline B only changes the field (field.hpp evaluate_field).
 #include "contact/contact.hpp"
+#include "fdem/build.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -43,15 +44,15 @@ constexpr Real kBoxAspect = 1e-6;  // needs |2A| >= kBoxAspect W^2 for every sub
 constexpr Real kBoxScale = 1e-8;   // needs W >= kBoxScale max |coordinate| of the box
 constexpr Real kBoxMinW2 = 1e-200, kBoxMaxW2 = 1e200;  // no under- or overflow in the bound
 
-inline Vec2 cpos(const ContactModel& cm, const Vec2* x, const Vec2* xv, NodeId i) {
-    return i < cm.num_real_nodes ? x[i] : xv[i - cm.num_real_nodes];
+inline Vec2 cpos(const ContactTopology& ct, const Vec2* x, const Vec2* xv, NodeId i) {
+    return i < ct.num_real_nodes ? x[i] : xv[i - ct.num_real_nodes];
 }
 
 // even-odd crossing test of p against the boundary edges of body c (handles holes)
-bool inside_body(const ContactModel& cm, BodyId c, const Vec2* x, Vec2 p) {
+bool inside_body(const ContactTopology& ct, BodyId c, const Vec2* x, Vec2 p) {
     bool in = false;
-    for (int32_t e = cm.body_bedge_begin[c]; e < cm.body_bedge_begin[c + 1]; ++e) {
-        const Vec2 a = x[cm.boundary_edges[e][0]], b = x[cm.boundary_edges[e][1]];
+    for (int32_t e = ct.body_bedge_begin[c]; e < ct.body_bedge_begin[c + 1]; ++e) {
+        const Vec2 a = x[ct.boundary_edges[e][0]], b = x[ct.boundary_edges[e][1]];
         if ((a.y > p.y) != (b.y > p.y)) {
             const Real xc = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
             if (p.x < xc) in = !in;
@@ -61,13 +62,13 @@ bool inside_body(const ContactModel& cm, BodyId c, const Vec2* x, Vec2 p) {
 }
 
 // force f on target t: the node, or half to each end node of an edge target (theory §6.12)
-inline void add_target_force(const ContactModel& cm, State& s, NodeId t, Vec2 f) {
-    if (t < cm.num_real_nodes) {
+inline void add_target_force(const ContactTopology& ct, State& s, NodeId t, Vec2 f) {
+    if (t < ct.num_real_nodes) {
         s.f[t] += f;
         s.f_contact[t] += f;
         return;
     }
-    const auto& e = cm.boundary_edges[static_cast<size_t>(t - cm.edge_target_base)];
+    const auto& e = ct.boundary_edges[static_cast<size_t>(t - ct.edge_target_base)];
     const Vec2 h = 0.5 * f;
     s.f[e[0]] += h;
     s.f_contact[e[0]] += h;
@@ -76,17 +77,17 @@ inline void add_target_force(const ContactModel& cm, State& s, NodeId t, Vec2 f)
 }
 
 // force f on contact node i (virtual: to its parents with the frozen weights, spec §4.4-6)
-inline void add_node_force(const ContactModel& cm, State& s, NodeId i, Vec2 f) {
-    if (i < cm.num_real_nodes) {
+inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f) {
+    if (i < ct.num_real_nodes) {
         s.f[i] += f;
         s.f_contact[i] += f;
         return;
     }
-    const size_t v = static_cast<size_t>(i - cm.num_real_nodes);
+    const size_t v = static_cast<size_t>(i - ct.num_real_nodes);
     for (int k = 0; k < 3; ++k) {
-        const Vec2 fk = cm.virt_weight[v][k] * f;
-        s.f[cm.virt_parent[v][k]] += fk;
-        s.f_contact[cm.virt_parent[v][k]] += fk;
+        const Vec2 fk = ct.virt_weight[v][k] * f;
+        s.f[ct.virt_parent[v][k]] += fk;
+        s.f_contact[ct.virt_parent[v][k]] += fk;
     }
 }
 
@@ -94,6 +95,8 @@ inline void add_node_force(const ContactModel& cm, State& s, NodeId i, Vec2 f) {
 
 void init_contact_state(const Model& m, State& s) {
     const ContactModel& cm = m.contact;
+    build_topology(m, s.topology);
+    const ContactTopology& ct = s.topology;
     ContactState& cs = s.contact;
     cs = ContactState{};
     if (cm.algorithm == ContactAlgorithm::None) return;
@@ -101,7 +104,7 @@ void init_contact_state(const Model& m, State& s) {
         // baseline A: couples of boundary triangles; about 8 partners per triangle after
         // warm-up (the grow-only buffers enlarge themselves if a scene needs more)
         LegacyTriangleState& ls = cs.legacy;
-        const size_t nt = cm.boundary_tris.size();
+        const size_t nt = ct.boundary_tris.size();
         ls.couples.reserve(8 * nt + 16);
         ls.next.reserve(8 * nt + 16);
         ls.couple_force.reserve(6 * (8 * nt + 16));
@@ -116,9 +119,9 @@ void init_contact_state(const Model& m, State& s) {
         ls.query.reserve(nt + 16);
         return;
     }
-    const size_t nv = static_cast<size_t>(cm.num_virtual());
-    const size_t nb = cm.boundary_nodes.size() + cm.edge_scale.size();  // targets
-    const size_t nt = static_cast<size_t>(cm.num_sub_tris());
+    const size_t nv = static_cast<size_t>(ct.num_virtual());
+    const size_t nb = ct.boundary_nodes.size() + ct.edge_scale.size();  // targets
+    const size_t nt = static_cast<size_t>(ct.num_sub_tris());
     cs.xv.assign(nv, Vec2{});
     cs.vv.assign(nv, Vec2{});
     // reservations: the grow-only buffers rarely need more than this after warm-up
@@ -139,14 +142,14 @@ void init_contact_state(const Model& m, State& s) {
     cs.active_next.reserve(2 * nb + 16);
 }
 
-void update_virtual_nodes(const Model& m, State& s) {
-    const ContactModel& cm = m.contact;
+void update_virtual_nodes(const Model&, State& s) {
+    const ContactTopology& ct = s.topology;
     ContactState& cs = s.contact;
     const Vec2* x = s.x.data();
     const Vec2* v = s.v.data();
-    for (int32_t k = 0; k < cm.num_virtual(); ++k) {
-        const auto& p = cm.virt_parent[k];
-        const auto& w = cm.virt_weight[k];
+    for (int32_t k = 0; k < ct.num_virtual(); ++k) {
+        const auto& p = ct.virt_parent[k];
+        const auto& w = ct.virt_weight[k];
         cs.xv[k] = w[0] * x[p[0]] + w[1] * x[p[1]] + w[2] * x[p[2]];
         cs.vv[k] = w[0] * v[p[0]] + w[1] * v[p[1]] + w[2] * v[p[2]];
     }
@@ -183,8 +186,8 @@ namespace {
 }  // namespace
 
 // Cheaper evaluation (round 5): the box is the same function of the same values when the bounds
-// run over the body's distinct contact nodes (ContactModel::body_cnode, each read once, real ones
-// from x and virtual ones from xv without a branch) and the areas over sub_local indices into
+// run over the body's distinct contact nodes (ContactTopology::body_cnode, each read once, real
+// ones from x and virtual ones from xv without a branch) and the areas over sub_local indices into
 // those positions: every vertex of a sub-triangle is one of those nodes and vice versa, and the
 // areas are computed from the same vertex values in the same order. Only the order of the
 // min/max chains changes, and it does not matter: min and max of a set are exact; NaN anywhere
@@ -208,13 +211,13 @@ inline BodyBox finish_box(Real lx, Real ly, Real hx, Real hy, Real amin, bool no
 }
 
 // the specification: bounds and areas over every sub-triangle's vertices in turn
-BodyBox reference_box(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyId b) {
+BodyBox reference_box(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyId b) {
     constexpr Real inf = std::numeric_limits<Real>::infinity();
     Real lx = inf, ly = inf, hx = -inf, hy = -inf, amin = inf;
     bool nonzero = true;
-    for (int32_t t = cm.body_sub_begin[b]; t < cm.body_sub_begin[b + 1]; ++t) {
-        const auto& q = cm.sub_tri[t];
-        const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
+    for (int32_t t = ct.body_sub_begin[b]; t < ct.body_sub_begin[b + 1]; ++t) {
+        const auto& q = ct.sub_tri[t];
+        const Vec2 p[3] = {cpos(ct, x, xv, q[0]), cpos(ct, x, xv, q[1]), cpos(ct, x, xv, q[2])};
         // bounds of the sub-triangle first: one min/max per sub-triangle on the chains
         lx = std::min(lx, std::min(p[0].x, std::min(p[1].x, p[2].x)));
         hx = std::max(hx, std::max(p[0].x, std::max(p[1].x, p[2].x)));
@@ -229,29 +232,29 @@ BodyBox reference_box(const ContactModel& cm, const Vec2* x, const Vec2* xv, Bod
 
 }  // namespace
 
-void body_boxes_reference(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
+void body_boxes_reference(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyBox* box,
                           int32_t nbodies) {
     for (BodyId b = 0; b < nbodies; ++b)
-        box[b] = reference_box(cm, x, xv, b);
+        box[b] = reference_box(ct, x, xv, b);
 }
 
-void body_boxes(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
+void body_boxes(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyBox* box,
                 int32_t nbodies) {
     constexpr Real inf = std::numeric_limits<Real>::infinity();
-    const bool compact = cm.body_cnode_begin.size() == static_cast<size_t>(nbodies) + 1 &&
-                         cm.sub_local.size() == cm.sub_tri.size();
-    const NodeId* cnode = cm.body_cnode.data();
-    const NodeId nreal_nodes = cm.num_real_nodes;
+    const bool compact = ct.body_cnode_begin.size() == static_cast<size_t>(nbodies) + 1 &&
+                         ct.sub_local.size() == ct.sub_tri.size();
+    const NodeId* cnode = ct.body_cnode.data();
+    const NodeId nreal_nodes = ct.num_real_nodes;
     // bodies are independent: shared among the threads when called in a parallel region
 #pragma omp for schedule(static)
     for (BodyId b = 0; b < nbodies; ++b) {
-        const int32_t nb = compact ? cm.body_cnode_begin[b] : 0;
-        const int32_t nn = compact ? cm.body_cnode_begin[b + 1] - nb : kBoxLocalNodes + 1;
+        const int32_t nb = compact ? ct.body_cnode_begin[b] : 0;
+        const int32_t nn = compact ? ct.body_cnode_begin[b + 1] - nb : kBoxLocalNodes + 1;
         if (nn > kBoxLocalNodes) {
-            box[b] = reference_box(cm, x, xv, b);
+            box[b] = reference_box(ct, x, xv, b);
             continue;
         }
-        const int32_t nr = cm.body_cnode_nreal[b];
+        const int32_t nr = ct.body_cnode_nreal[b];
         Real lx, ly, hx, hy, amin;
         bool nonzero;
 #ifdef __SSE2__
@@ -271,8 +274,8 @@ void body_boxes(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* 
         }
         const __m128d abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
         __m128d am = _mm_set_sd(inf), ok = _mm_castsi128_pd(_mm_set1_epi64x(-1));
-        for (int32_t t = cm.body_sub_begin[b]; t < cm.body_sub_begin[b + 1]; ++t) {
-            const auto& q = cm.sub_local[t];
+        for (int32_t t = ct.body_sub_begin[b]; t < ct.body_sub_begin[b + 1]; ++t) {
+            const auto& q = ct.sub_local[t];
             const __m128d e1 = _mm_sub_pd(p[q[1]], p[q[0]]), e2 = _mm_sub_pd(p[q[2]], p[q[0]]);
             // (e1.x e2.y, e1.y e2.x), then their difference: cross(p1 - p0, p2 - p0) exactly
             const __m128d m = _mm_mul_pd(e1, _mm_shuffle_pd(e2, e2, 1));
@@ -307,8 +310,8 @@ void body_boxes(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* 
             hy = std::max(hy, py[k]);
         }
         nonzero = true;
-        for (int32_t t = cm.body_sub_begin[b]; t < cm.body_sub_begin[b + 1]; ++t) {
-            const auto& q = cm.sub_local[t];
+        for (int32_t t = ct.body_sub_begin[b]; t < ct.body_sub_begin[b + 1]; ++t) {
+            const auto& q = ct.sub_local[t];
             // cross(p1 - p0, p2 - p0) of evaluate_pair, the same operations
             const Real e1x = px[q[1]] - px[q[0]], e1y = py[q[1]] - py[q[0]];
             const Real e2x = px[q[2]] - px[q[0]], e2y = py[q[2]] - py[q[0]];
@@ -326,17 +329,18 @@ namespace {
 // The rare part of evaluate_pair: field and law of a pair whose node lies in sub-triangle best
 // (vertices pb, barycentric coordinates N). Out of line, so that the locate loop that every pair
 // runs stays small (no FieldSample set-up per pair).
-[[gnu::noinline]] int32_t contact_at(const Model& m, const ContactState& cs, const Vec2* v,
-                                     const Vec2* vv, Real dt, NodeId j, BodyId c, int32_t best,
-                                     const Real N[3], const Vec2 pb[3], PairResult& out) {
+[[gnu::noinline]] int32_t contact_at(const Model& m, const ContactTopology& ct,
+                                     const ContactState& cs, const Vec2* v, const Vec2* vv, Real dt,
+                                     NodeId j, BodyId c, int32_t best, const Real N[3],
+                                     const Vec2 pb[3], PairResult& out) {
     const ContactModel& cm = m.contact;
     FieldSample fs;
     fs.N[0] = N[0];
     fs.N[1] = N[1];
     fs.N[2] = N[2];
-    const auto& q = cm.sub_tri[best];
-    const Real dist[3] = {cm.node_dist[q[0]], cm.node_dist[q[1]], cm.node_dist[q[2]]};
-    evaluate_field(cm, best, pb, dist, fs);
+    const auto& q = ct.sub_tri[best];
+    const Real dist[3] = {ct.node_dist[q[0]], ct.node_dist[q[1]], ct.node_dist[q[2]]};
+    evaluate_field(cm.algorithm, ct, best, pb, dist, fs);
     if (!(fs.d > 0)) return -1;
 
     // history of the pair: binary search in the previous active list (only pairs in contact
@@ -350,15 +354,15 @@ namespace {
     out.hist = has_hist ? static_cast<int32_t>(it - cs.active.begin()) : -1;
 
     // the law (eqs. 5-19) with v_r = v_c - v_j, v_c = sum N_i v_i (eq. 13)
-    const BodyId bt = m.node_body[target_node(cm, j)];
+    const BodyId bt = m.node_body[target_node(ct, j)];
     const ContactParams& p = pair_parameters(cm, m.bodies[c].material, m.bodies[bt].material);
-    const Real scale = target_scale(cm, j);  // m_j / mbar (eq. 19), l_j / lbar, or eq. 6.19
+    const Real scale = target_scale(ct, j);  // m_j / mbar (eq. 19), l_j / lbar, or eq. 6.19
     Vec2 vc;
     for (int k = 0; k < 3; ++k)
-        vc += fs.N[k] * cpos(cm, v, vv, q[k]);
+        vc += fs.N[k] * cpos(ct, v, vv, q[k]);
     out.h = has_hist ? it->h : PairHistory{};
     const LawResult r =
-        contact_law(p, fs.d, fs.grad, vc - target_point(cm, v, j), scale, dt, out.h);
+        contact_law(p, fs.d, fs.grad, vc - target_point(ct, v, j), scale, dt, out.h);
 
     // depth diagnostics: d relative to the local layer thickness
     out.h.depth_ratio = fs.layer > 0 ? fs.d / fs.layer : 1.0;
@@ -382,20 +386,20 @@ namespace {
 // c_i = cross(p_{i+1} - x, p_{i+2} - x) (N_i = c_i / 2A, eq. 4) against the signed area without
 // a division; only a point within a margin of the triangle goes on to barycentric(), which
 // computes the same c_i, so the accepted triangle and N are bitwise those of the full test.
-int32_t evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, const Vec2* v,
-                      const Vec2* xv, const Vec2* vv, Real dt, int32_t pr, PairResult& out) {
-    const ContactModel& cm = m.contact;
+int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactState& cs,
+                      const Vec2* x, const Vec2* v, const Vec2* xv, const Vec2* vv, Real dt,
+                      int32_t pr, PairResult& out) {
     const NodeId j = cs.cand.node[pr];
 
     // locate x_j: the candidate sub-triangle with the largest min N_i >= -eps
-    const Vec2 xj = target_point(cm, x, j);
+    const Vec2 xj = target_point(ct, x, j);
     int32_t best = -1;
     Real best_min = -kLocateEps;
     Real bN[3];
     Vec2 pb[3];
     for (int32_t k = cs.cand.begin[pr]; k < cs.cand.begin[pr + 1]; ++k) {
-        const auto& q = cm.sub_tri[cs.cand.tri[k]];
-        const Vec2 p[3] = {cpos(cm, x, xv, q[0]), cpos(cm, x, xv, q[1]), cpos(cm, x, xv, q[2])};
+        const auto& q = ct.sub_tri[cs.cand.tri[k]];
+        const Vec2 p[3] = {cpos(ct, x, xv, q[0]), cpos(ct, x, xv, q[1]), cpos(ct, x, xv, q[2])};
         // N_i = c_i * (1 / a2) with |rounding| < 1e-15 relative, so any c_i beyond
         // kRejectMargin |a2| on the outer side gives N_i < -kLocateEps: rejected either way
         // (NaN and a2 == 0 fall through to barycentric(), which decides as before)
@@ -419,13 +423,14 @@ int32_t evaluate_pair(const Model& m, const ContactState& cs, const Vec2* x, con
         }
     }
     if (best < 0) return -1;
-    return contact_at(m, cs, v, vv, dt, j, cs.cand.body[pr], best, bN, pb, out);
+    return contact_at(m, ct, cs, v, vv, dt, j, cs.cand.body[pr], best, bN, pb, out);
 }
 
 }  // namespace
 
 void add_contact_forces(const Model& m, State& s) {
     const ContactModel& cm = m.contact;
+    const ContactTopology& ct = s.topology;
     ContactState& cs = s.contact;
     cs.deep_penetrations = 0;
     cs.lost_inside = 0;
@@ -433,7 +438,7 @@ void add_contact_forces(const Model& m, State& s) {
     cs.lost_body = kNone;
     cs.lost_depth_ratio = 0;
     cs.max_depth_ratio = 0;
-    if (cm.algorithm == ContactAlgorithm::None || cm.num_sub_tris() == 0) {
+    if (cm.algorithm == ContactAlgorithm::None || ct.num_sub_tris() == 0) {
         s.energy.contact = 0;
         cs.active_contacts = 0;
         return;
@@ -472,7 +477,7 @@ void add_contact_forces(const Model& m, State& s) {
         if (cs.skin_used > cm.buffer) cs.need_rebuild = true;
     }
     if (cs.need_rebuild) {
-        find_candidates(m, x, xv, cs.cand, cs.broad);
+        find_candidates(m, ct, x, xv, cs.cand, cs.broad);
         cs.need_rebuild = false;
         cs.skin_used = 0;
         ++cs.rebuilds;
@@ -511,7 +516,7 @@ void add_contact_forces(const Model& m, State& s) {
         // implicit barrier completes them), then the pairs
 #pragma omp parallel if (npairs > kMinParallelPairs)
         {
-            if (boxes) body_boxes(cm, x, xv, box, nbodies);
+            if (boxes) body_boxes(ct, x, xv, box, nbodies);
 #pragma omp for schedule(static)
             for (int32_t ch = 0; ch < kPairChunks; ++ch) {
                 const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
@@ -522,13 +527,13 @@ void add_contact_forces(const Model& m, State& s) {
                     if (pr + kBoxPrefetch < e)
                         __builtin_prefetch(&box[cand_body[pr + kBoxPrefetch]]);
                     in_contact[n] = pr;
-                    n += !box_rejects(box[cand_body[pr]], target_point(cm, x, cand_node[pr]));
+                    n += !box_rejects(box[cand_body[pr]], target_point(ct, x, cand_node[pr]));
                 }
                 // pass 2: locate and law of those; the pairs in contact, compacted in place
                 int32_t nc = b;
                 for (int32_t k = b; k < n; ++k) {
                     const int32_t pr = in_contact[k];
-                    if (evaluate_pair(m, ccs, x, v, xv, vv, dt, pr, out[pr]) >= 0)
+                    if (evaluate_pair(m, ct, ccs, x, v, xv, vv, dt, pr, out[pr]) >= 0)
                         in_contact[nc++] = pr;
                 }
                 chunk_count[ch] = nc - b;
@@ -543,13 +548,13 @@ void add_contact_forces(const Model& m, State& s) {
     size_t ia = 0;
     cs.active_next.clear();
     auto release = [&](const ActiveContact& a) {
-        const BodyId bt = m.node_body[target_node(cm, a.node)];
+        const BodyId bt = m.node_body[target_node(ct, a.node)];
         const ContactParams& p =
             pair_parameters(cm, m.bodies[a.body].material, m.bodies[bt].material);
-        const Real scale = target_scale(cm, a.node);
+        const Real scale = target_scale(ct, a.node);
         bool lost = false;
         if (a.h.depth_ratio > kLostCheckRatio &&
-            inside_body(cm, a.body, x, target_point(cm, x, a.node))) {
+            inside_body(ct, a.body, x, target_point(ct, x, a.node))) {
             lost = true;  // left the boundary layer inwards: penetration too deep (spec §4.6)
             ++cs.lost_inside;
             if (cs.lost_node < 0 || a.h.depth_ratio > cs.lost_depth_ratio) {
@@ -576,10 +581,10 @@ void add_contact_forces(const Model& m, State& s) {
             const PairResult& o = out[pr];
 
             // f on the target, -N_i f on the contactor (eq. 20)
-            const auto& q = cm.sub_tri[o.tri];
-            add_target_force(cm, s, j, o.f);
+            const auto& q = ct.sub_tri[o.tri];
+            add_target_force(ct, s, j, o.f);
             for (int kk = 0; kk < 3; ++kk)
-                add_node_force(cm, s, q[kk], -o.N[kk] * o.f);
+                add_node_force(ct, s, q[kk], -o.N[kk] * o.f);
 
             const Real ratio = o.h.depth_ratio;
             cs.max_depth_ratio = std::max(cs.max_depth_ratio, ratio);
@@ -610,7 +615,7 @@ namespace {
 // boundary edges e gets k_i <= (3 p / h_min) sum_e L_e / 2 (= 3 p L / H for two equal edges).
 // The reaction on a partner of similar mass adds a factor 2 to k / m. Friction: one spring
 // p_t per edge and partner triangle, at most 3 partners per edge for similar element sizes.
-Real legacy_triangle_stable_dt(const Model& m) {
+Real legacy_triangle_stable_dt(const Model& m, const ContactTopology& ct) {
     const ContactModel& cm = m.contact;
     Real p_max = 0, pt_max = 0;
     for (const ContactParams& p : cm.resolved) {
@@ -619,7 +624,7 @@ Real legacy_triangle_stable_dt(const Model& m) {
     }
     std::vector<Real> half_len(static_cast<size_t>(m.num_nodes()), 0.0);
     std::vector<int32_t> edges(static_cast<size_t>(m.num_nodes()), 0);
-    for (const auto& e : cm.boundary_edges) {
+    for (const auto& e : ct.boundary_edges) {
         const Real l = norm(m.node_x0[e[1]] - m.node_x0[e[0]]);
         for (NodeId i : e) {
             half_len[i] += 0.5 * l;
@@ -627,8 +632,8 @@ Real legacy_triangle_stable_dt(const Model& m) {
         }
     }
     Real dt = std::numeric_limits<Real>::infinity();
-    for (NodeId i : cm.boundary_nodes) {
-        if (cm.body_fixed[m.node_body[i]] || !(m.node_mass[i] > 0)) continue;
+    for (NodeId i : ct.boundary_nodes) {
+        if (ct.body_fixed[m.node_body[i]] || !(m.node_mass[i] > 0)) continue;
         const Real k = 3.0 * p_max / cm.h_min * half_len[i];
         dt = std::min(dt, 2.0 / std::sqrt(2.0 * k / m.node_mass[i]));
         if (pt_max > 0) {
@@ -641,18 +646,18 @@ Real legacy_triangle_stable_dt(const Model& m) {
 
 }  // namespace
 
-Real contact_stable_dt(const Model& m) {
+Real contact_stable_dt(const Model& m, const ContactTopology& ct) {
     const ContactModel& cm = m.contact;
     Real dt = std::numeric_limits<Real>::infinity();
-    if (cm.algorithm == ContactAlgorithm::None || cm.num_sub_tris() == 0 || !(cm.m_bar > 0)) {
+    if (cm.algorithm == ContactAlgorithm::None || ct.num_sub_tris() == 0 || !(cm.m_bar > 0)) {
         return dt;
     }
-    if (cm.algorithm == ContactAlgorithm::LegacyTriangle) return legacy_triangle_stable_dt(m);
+    if (cm.algorithm == ContactAlgorithm::LegacyTriangle) return legacy_triangle_stable_dt(m, ct);
 
     // baseline B: |grad d_B| = H_ref / H_o <= H_ref / h_min instead of ~1, and the stiffness
     // g' k_n |grad d|^2 grows with its square (docs/theory.md §7.4)
     Real grad2 = 1;
-    for (const LegacyBoundaryTri& t : cm.sub_legacy_b) {
+    for (const LegacyBoundaryTri& t : ct.sub_legacy_b) {
         const Real r = t.h_ref / cm.h_min;
         grad2 = std::max(grad2, r * r);
     }
@@ -665,19 +670,19 @@ Real contact_stable_dt(const Model& m) {
     // Edge targets (theory §6.12): a midpoint of scale w acts like a node of mass w m_dt, and
     // the target-side term 1 becomes the row-sum bound target_dt_factor
     Real m_target_max = 0, m_contactor_min = std::numeric_limits<Real>::infinity();
-    for (NodeId j : cm.boundary_nodes)
+    for (NodeId j : ct.boundary_nodes)
         m_target_max = std::max(m_target_max, m.node_mass[j]);
-    for (const Real w : cm.edge_scale)
-        m_target_max = std::max(m_target_max, w * cm.m_dt);
-    for (int32_t t = 0; t < cm.num_sub_tris(); ++t) {
-        for (NodeId i : cm.sub_tri[t]) {
-            if (i >= cm.num_real_nodes || m.node_inv_mass[i] == 0) continue;
+    for (const Real w : ct.edge_scale)
+        m_target_max = std::max(m_target_max, w * ct.m_dt);
+    for (int32_t t = 0; t < ct.num_sub_tris(); ++t) {
+        for (NodeId i : ct.sub_tri[t]) {
+            if (i >= ct.num_real_nodes || m.node_inv_mass[i] == 0) continue;
             m_contactor_min = std::min(m_contactor_min, m.node_mass[i]);
         }
     }
     const Real mass_factor = std::isfinite(m_contactor_min) && m_contactor_min > 0
-                                 ? cm.target_dt_factor + m_target_max / m_contactor_min
-                                 : 1.0 + cm.target_dt_factor;
+                                 ? ct.target_dt_factor + m_target_max / m_contactor_min
+                                 : 1.0 + ct.target_dt_factor;
 
     // stiffness factor g' at the deepest penetration expected, d_ref = 0.1 h_min (spec §4.6);
     // the unloading branch is up to beta times stiffer than the loading one (theory eq. 6.13)
@@ -692,11 +697,11 @@ Real contact_stable_dt(const Model& m) {
         // omega_c = sqrt(g' k_n (1 + m_j/m_i) / mbar) (theory eq. 6.15; spec §3.4 has the factor
         // 2 of equal masses); damping lowers the bound
         const Real k = gp * p.penalty * grad2;
-        const Real omega = std::sqrt(mass_factor * k / cm.m_dt);
-        const Real zeta = p.damping / (2.0 * std::sqrt(k * cm.m_dt));
+        const Real omega = std::sqrt(mass_factor * k / ct.m_dt);
+        const Real zeta = p.damping / (2.0 * std::sqrt(k * ct.m_dt));
         dt = std::min(dt, 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta));
         if (p.friction > 0 && p.tangential_penalty > 0) {
-            dt = std::min(dt, 2.0 / std::sqrt(mass_factor * p.tangential_penalty / cm.m_dt));
+            dt = std::min(dt, 2.0 / std::sqrt(mass_factor * p.tangential_penalty / ct.m_dt));
         }
     }
     return dt;

@@ -11,11 +11,13 @@
 
 namespace fdem {
 
-/// Derive the contact topology of m (boundary entities, virtual nodes, contactor
-/// sub-triangles, nodal distances, m_bar) from its mesh. Called by finalize_model().
-void build_contact_topology(Model& m);
+/// Resolve the contact parameters of m (every default filled in: pair laws per material class,
+/// penalty, tangential penalty, buffer, m_bar, h_min). Called by finalize_model(); throws
+/// InputError for parameters out of range.
+void resolve_contact_params(Model& m);
 
-/// Prepare contact state for a fresh run (sizes buffers; no allocation later).
+/// Prepare contact state for a fresh run: builds s.topology (build_topology()) and sizes the
+/// buffers (no allocation later).
 void init_contact_state(const Model& m, State& s);
 
 /// Add contact forces to s.f and s.f_contact for positions s.x and velocities s.v (v^{n-1/2});
@@ -32,18 +34,18 @@ void update_virtual_nodes(const Model& m, State& s);
 /// Reads the body's distinct contact nodes (ContactModel::body_cnode) once each; a model
 /// without that list (hand-made in tests) or a body with many nodes takes the reference path.
 /// Bitwise the same boxes as body_boxes_reference() (proof at body_boxes(), tested).
-void body_boxes(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
+void body_boxes(const ContactTopology& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
                 int32_t nbodies);
 
 /// The specification of body_boxes(), for tests: the same boxes from the vertices of every
 /// sub-triangle in turn (three position reads per sub-triangle). Serial.
-void body_boxes_reference(const ContactModel& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
+void body_boxes_reference(const ContactTopology& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
                           int32_t nbodies);
 
-/// Fill ContactModel::body_cnode, body_cnode_begin, body_cnode_nreal and sub_local from
-/// sub_tri and body_sub_begin (build_contact_topology() calls it; so can tests that build a
-/// ContactModel by hand).
-void build_body_contact_nodes(ContactModel& cm);
+/// Fill ContactTopology::body_cnode, body_cnode_begin, body_cnode_nreal and sub_local from
+/// sub_tri and body_sub_begin (build_topology() calls it; so can tests that build a
+/// ContactTopology by hand).
+void build_body_contact_nodes(ContactTopology& cm);
 
 /// true: a target node at p is provably in none of the sub-triangles of the body of box b:
 /// the locate test of the narrow phase would reject every one of them (contact.cpp
@@ -74,6 +76,6 @@ inline bool box_rejects(const BodyBox& b, Vec2 p) {
 }
 
 /// Largest stable dt [s] imposed by the contact penalty (spec §3.4); +inf without contact.
-Real contact_stable_dt(const Model& m);
+Real contact_stable_dt(const Model& m, const ContactTopology& t);
 
 }  // namespace fdem

@@ -3,7 +3,7 @@
 // Everything is inline: it sits in the innermost loop of the narrow phase.
 #pragma once
 
-#include "fdem/contact_model.hpp"
+#include "fdem/contact_topology.hpp"
 #include "fdem/math.hpp"
 
 namespace fdem {
@@ -81,11 +81,11 @@ inline void legacy_boundary_field(const Vec2 p[3], const LegacyBoundaryTri& c, F
 /// distances dist): the single plug-in point of the triangle-to-node law (law.hpp), which is
 /// shared by the smooth field and baseline B. Baseline A (LegacyTriangle) does not come here:
 /// it integrates triangle-to-triangle (legacy_triangle.hpp).
-inline void evaluate_field(const ContactModel& cm, int32_t sub, const Vec2 p[3], const Real dist[3],
-                           FieldSample& fs) {
-    switch (cm.algorithm) {
+inline void evaluate_field(ContactAlgorithm algorithm, const ContactTopology& ct, int32_t sub,
+                           const Vec2 p[3], const Real dist[3], FieldSample& fs) {
+    switch (algorithm) {
         case ContactAlgorithm::LegacyBoundary:
-            legacy_boundary_field(p, cm.sub_legacy_b[static_cast<size_t>(sub)], fs);
+            legacy_boundary_field(p, ct.sub_legacy_b[static_cast<size_t>(sub)], fs);
             break;
         case ContactAlgorithm::Smooth:
         default:

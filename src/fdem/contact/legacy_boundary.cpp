@@ -15,8 +15,7 @@ Key key(NodeId a, NodeId b) {
 
 }  // namespace
 
-LegacyBoundaryField build_legacy_boundary_field(const Model& m) {
-    const ContactModel& cm = m.contact;
+LegacyBoundaryField build_legacy_boundary_field(const Model& m, const ContactTopology& cm) {
     LegacyBoundaryField lb;
 
     // boundary edges as sorted undirected keys

@@ -17,7 +17,7 @@ namespace fdem {
 // LegacyBoundaryTri (the per-sub-triangle terms of phi_B) is in fdem/contact_model.hpp, the
 // field itself, legacy_boundary_field(p, c, fs), in contact/field.hpp next to smooth_field().
 
-/// Baseline B data of a model, parallel to the contact sub-triangles (ContactModel::sub_tri).
+/// Baseline B data of a model, parallel to the contact sub-triangles (ContactTopology::sub_tri).
 struct LegacyBoundaryField {
     std::vector<LegacyBoundaryTri> sub;  ///< one per contactor sub-triangle
     std::vector<Real> body_h_ref;        ///< H_ref per body [m] (0 for a body with no boundary)
@@ -26,8 +26,8 @@ struct LegacyBoundaryField {
 /// Build the baseline B field from the contact topology of m (sub_tri, sub_parent,
 /// boundary_edges, virtual nodes): H_ref(body) = mean over its boundary edges e of the height
 /// 2 A_t / l_e of the triangle t owning e, in the reference configuration (theory eq. 7.8).
-/// Requires build_contact_topology() to have run on m.
-LegacyBoundaryField build_legacy_boundary_field(const Model& m);
+/// t is the contact topology of m without its baseline B field (build_topology() calls this).
+LegacyBoundaryField build_legacy_boundary_field(const Model& m, const ContactTopology& t);
 
 /// Same, addressed by sub-triangle id of the contact topology.
 inline void legacy_boundary_field(const LegacyBoundaryField& lb, int32_t sub, const Vec2 p[3],

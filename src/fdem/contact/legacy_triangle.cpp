@@ -265,14 +265,15 @@ Real legacy_couple_energy(const Vec2 xa[3], const Vec2 xb[3], Real penalty) {
 
 namespace {
 
-bool couple_allowed(const Model& m, TriId a, TriId b) {
+bool couple_allowed(const Model& m, const ContactTopology& t, TriId a, TriId b) {
     const ContactModel& cm = m.contact;
     const BodyId ba = m.tri_body[a], bb = m.tri_body[b];
-    return is_contactor_for(cm, ba, bb) || is_contactor_for(cm, bb, ba);
+    return is_contactor_for(cm, t, ba, bb) || is_contactor_for(cm, t, bb, ba);
 }
 
-Real bounding_circles(const Model& m, const Vec2* x, LegacyTriangleState& ls) {
-    const auto& bt = m.contact.boundary_tris;
+Real bounding_circles(const Model& m, const ContactTopology& t, const Vec2* x,
+                      LegacyTriangleState& ls) {
+    const auto& bt = t.boundary_tris;
     ls.center.resize(bt.size());
     ls.radius.resize(bt.size());
     Real r_max = 0;
@@ -308,8 +309,9 @@ void merge_history(LegacyTriangleState& ls) {
 
 }  // namespace
 
-void find_legacy_couples(const Model& m, const Vec2* x, LegacyTriangleState& ls) {
-    const auto& bt = m.contact.boundary_tris;
+void find_legacy_couples(const Model& m, const ContactTopology& t, const Vec2* x,
+                         LegacyTriangleState& ls) {
+    const auto& bt = t.boundary_tris;
     const Real buf = m.contact.buffer;
     ls.next.clear();
     const int32_t nt = static_cast<int32_t>(bt.size());
@@ -317,7 +319,7 @@ void find_legacy_couples(const Model& m, const Vec2* x, LegacyTriangleState& ls)
         merge_history(ls);
         return;
     }
-    const Real r_max = bounding_circles(m, x, ls);
+    const Real r_max = bounding_circles(m, t, x, ls);
 
     // grid over the centroids (detect/grid.hpp, shared with the smooth-contact broad phase);
     // cell >= 2 r_max + b, so every partner centroid lies in the 3x3 block around a triangle's
@@ -340,7 +342,7 @@ void find_legacy_couples(const Model& m, const Vec2* x, LegacyTriangleState& ls)
                     if (tb <= ta) continue;
                     const Real reach = ls.radius[i] + ls.radius[j] + buf;
                     if (norm2(ls.center[i] - ls.center[j]) >= reach * reach) continue;
-                    if (!couple_allowed(m, ta, tb)) continue;
+                    if (!couple_allowed(m, t, ta, tb)) continue;
                     ls.query.push_back(tb);
                 }
             }
@@ -356,17 +358,18 @@ void find_legacy_couples(const Model& m, const Vec2* x, LegacyTriangleState& ls)
     merge_history(ls);
 }
 
-void find_legacy_couples_brute_force(const Model& m, const Vec2* x, LegacyTriangleState& ls) {
-    const auto& bt = m.contact.boundary_tris;
+void find_legacy_couples_brute_force(const Model& m, const ContactTopology& t, const Vec2* x,
+                                     LegacyTriangleState& ls) {
+    const auto& bt = t.boundary_tris;
     const Real buf = m.contact.buffer;
     ls.next.clear();
-    bounding_circles(m, x, ls);
+    bounding_circles(m, t, x, ls);
     for (size_t i = 0; i < bt.size(); ++i) {
         for (size_t j = 0; j < bt.size(); ++j) {
             if (bt[j] <= bt[i]) continue;
             const Real reach = ls.radius[i] + ls.radius[j] + buf;
             if (norm2(ls.center[i] - ls.center[j]) >= reach * reach) continue;
-            if (!couple_allowed(m, bt[i], bt[j])) continue;
+            if (!couple_allowed(m, t, bt[i], bt[j])) continue;
             LegacyCouple c;
             c.a = bt[i];
             c.b = bt[j];
@@ -394,7 +397,8 @@ Real add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& l
     for (const Vec2& v : s.v)
         v2 = std::max(v2, norm2(v));
     ls.skin_used += 2.0 * s.dt * std::sqrt(v2);
-    if (ls.need_rebuild || ls.skin_used > cm.buffer) find_legacy_couples(m, s.x.data(), ls);
+    if (ls.need_rebuild || ls.skin_used > cm.buffer)
+        find_legacy_couples(m, s.topology, s.x.data(), ls);
 
     // 1. every couple independently (its sliding history is its own): forces on its 6 nodes,
     //    stored and dissipated energy into per-couple buffers, in parallel

@@ -81,14 +81,16 @@ Real legacy_couple_energy(const Vec2 xa[3], const Vec2 xb[3], Real penalty);
 // LegacyCouple and LegacyTriangleState (couples, sliding history, scratch) are in
 // fdem/contact_state.hpp; ContactState::legacy holds the one of a run.
 
-/// Candidate couples (a, b) of contact-topology boundary triangles (m.contact.boundary_tris)
+/// Candidate couples (a, b) of contact-topology boundary triangles (ContactTopology::boundary_tris)
 /// of different bodies, not both fixed, whose bounding circles (centroid, largest
 /// centroid-vertex distance) are closer than the buffer m.contact.buffer. Keeps the sliding
 /// history of couples that stay candidates. Deterministic (sorted by (a, b)).
-void find_legacy_couples(const Model& m, const Vec2* x, LegacyTriangleState& ls);
+void find_legacy_couples(const Model& m, const ContactTopology& t, const Vec2* x,
+                         LegacyTriangleState& ls);
 
 /// O(N^2) reference of find_legacy_couples (tests).
-void find_legacy_couples_brute_force(const Model& m, const Vec2* x, LegacyTriangleState& ls);
+void find_legacy_couples_brute_force(const Model& m, const ContactTopology& t, const Vec2* x,
+                                     LegacyTriangleState& ls);
 
 /// Baseline A contact forces for positions s.x and velocities s.v (v^{n-1/2}): rebuilds the
 /// couples when the skin is used up, then adds legacy_triangle_couple() of every couple to s.f
@@ -96,7 +98,7 @@ void find_legacy_couples_brute_force(const Model& m, const Vec2* x, LegacyTriang
 /// friction with p_t = k_t and mu of the same parameters. Friction dissipation is added to
 /// s.energy.dissipated_contact. Returns the stored normal contact energy of all couples at s.x
 /// [J/m] (legacy_couple_energy, theory eq. 7.10) plus the tangential springs 1/2 p_t s^2; the
-/// caller assigns it to s.energy.contact. Requires build_contact_topology() (boundary_tris,
+/// caller assigns it to s.energy.contact. Requires s.topology (boundary_tris,
 /// resolved params, buffer).
 Real add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& ls);
 

@@ -5,11 +5,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "contact/contact.hpp"
 #include "contact/legacy_boundary.hpp"
+#include "contact/validate.hpp"
+#include "fdem/assert.hpp"
+#include "fdem/build.hpp"
 #include "fdem/error.hpp"
 
 namespace fdem {
@@ -123,7 +127,7 @@ void resolve_params(Model& m) {
 
 class TopologyBuilder {
 public:
-    explicit TopologyBuilder(Model& m) : m_(m), cm_(m.contact) {}
+    TopologyBuilder(const Model& m, ContactTopology& t) : m_(m), cm_(t) {}
 
     void body(BodyId b);
 
@@ -158,8 +162,8 @@ private:
     void composite(BodyId b, TriId t0);
     void nodal_distances(BodyId b, size_t sub_begin);
 
-    Model& m_;
-    ContactModel& cm_;
+    const Model& m_;
+    ContactTopology& cm_;
     std::vector<EdgeRec> edges_;
     std::vector<Key> bkeys_, ckeys_;
     std::vector<NodeId> cvirt_;  // virtual node of chord ckeys_[i]
@@ -335,9 +339,9 @@ void TopologyBuilder::composite(BodyId b, TriId t0) {
 
     // baseline B evaluates phi_B of the mesh sub-triangle holding each contact sub-triangle
     // (legacy_boundary.cpp), so it needs the nested option (a) layout
-    const CompositeSpecialCase mode = cm_.algorithm == ContactAlgorithm::LegacyBoundary
+    const CompositeSpecialCase mode = m_.contact.algorithm == ContactAlgorithm::LegacyBoundary
                                           ? CompositeSpecialCase::Split
-                                          : cm_.composite_special_case;
+                                          : m_.contact.composite_special_case;
     if (mode == CompositeSpecialCase::Split) {
         // option (a), Figs. 8a/10a: n7, n8, n9 at the midpoints of the central sub-triangle's
         // edges; each corner sub-triangle is halved, the central one cut 1 -> 4 (10 in all)
@@ -446,6 +450,7 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
             }
             cm_.node_dist[i] = dmin;
             ++cm_.num_fallback_nodes;
+            ++cm_.body_fallback.back();
         }
     }
 }
@@ -458,8 +463,7 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
 // of a body is unchanged. With length scaling this is Simpson's rule on every edge exactly.
 // target_dt_factor: the target stiffness is no longer diagonal (a midpoint moves with both end
 // nodes); its largest row sum per node mass bounds the target-side term of eq. 6.15 (Gershgorin).
-void add_edge_targets(Model& m) {
-    ContactModel& cm = m.contact;
+void add_edge_targets(const Model& m, ContactTopology& cm) {
     const size_t ne = cm.boundary_edges.size();
     std::vector<Real> len(ne), tributary(static_cast<size_t>(m.num_nodes()), 0.0);
     for (size_t e = 0; e < ne; ++e) {
@@ -495,9 +499,131 @@ void add_edge_targets(Model& m) {
     cm.target_dt_factor = factor;
 }
 
+// Body b of the old topology o, appended to t unchanged but for the ids that depend on what
+// comes before it: virtual node ids and boundary edge ids (node_dist_edge). Real node ids,
+// triangle ids and body ids do not move. Gives the arrays TopologyBuilder::body(b) would append
+// for the same mesh of body b (rebuild_topology()).
+void splice_body(const Model& m, const ContactTopology& o, BodyId b, ContactTopology& t) {
+    const Body& body = m.bodies[b];
+    const int32_t nr = t.num_real_nodes;
+    const int32_t vshift = t.num_virtual() - o.body_virt_begin[b];
+    const int32_t eshift = static_cast<int32_t>(t.boundary_edges.size()) - o.body_bedge_begin[b];
+    auto append = [](auto& dst, const auto& src, int32_t begin, int32_t end) {
+        dst.insert(dst.end(), src.begin() + begin, src.begin() + end);
+    };
+    append(t.boundary_edges, o.boundary_edges, o.body_bedge_begin[b], o.body_bedge_begin[b + 1]);
+    t.body_bedge_begin.push_back(static_cast<int32_t>(t.boundary_edges.size()));
+    append(t.boundary_nodes, o.boundary_nodes, o.body_bnode_begin[b], o.body_bnode_begin[b + 1]);
+    t.body_bnode_begin.push_back(static_cast<int32_t>(t.boundary_nodes.size()));
+    for (NodeId i = body.node_begin; i < body.node_end; ++i) {
+        t.node_on_boundary[i] = o.node_on_boundary[i];
+        t.node_dist[i] = o.node_dist[i];
+        t.node_dist_edge[i] = o.node_dist_edge[i] < 0 ? -1 : o.node_dist_edge[i] + eshift;
+    }
+    append(t.chords, o.chords, o.body_chord_begin[b], o.body_chord_begin[b + 1]);
+    append(t.boundary_tris, o.boundary_tris, o.body_btri_begin[b], o.body_btri_begin[b + 1]);
+    append(t.virt_parent, o.virt_parent, o.body_virt_begin[b], o.body_virt_begin[b + 1]);
+    append(t.virt_weight, o.virt_weight, o.body_virt_begin[b], o.body_virt_begin[b + 1]);
+    for (int32_t s = o.body_sub_begin[b]; s < o.body_sub_begin[b + 1]; ++s) {
+        std::array<NodeId, 3> q = o.sub_tri[s];
+        for (NodeId& i : q)
+            i = i < nr ? i : i + vshift;
+        t.sub_tri.push_back(q);
+        t.sub_body.push_back(b);
+        t.sub_parent.push_back(o.sub_parent[s]);
+    }
+    t.body_sub_begin.push_back(static_cast<int32_t>(t.sub_tri.size()));
+    t.node_dist.resize(static_cast<size_t>(t.num_contact_nodes()), 0.0);
+    t.node_dist_edge.resize(static_cast<size_t>(t.num_contact_nodes()), -1);
+    for (int32_t v = o.body_virt_begin[b]; v < o.body_virt_begin[b + 1]; ++v) {
+        const size_t from = static_cast<size_t>(nr + v), to = static_cast<size_t>(nr + v + vshift);
+        t.node_dist[to] = o.node_dist[from];
+        t.node_dist_edge[to] = o.node_dist_edge[from] < 0 ? -1 : o.node_dist_edge[from] + eshift;
+    }
+    t.num_fallback_nodes += o.body_fallback[b];
+    t.body_fallback.back() = o.body_fallback[b];
+}
+
+// Build t for m: bodies with dirty[b] (or every body when old is null) by TopologyBuilder, the
+// others spliced from old; then the passes over all bodies (contact node lists, target scales,
+// edge targets, baseline B field).
+void assemble(const Model& m, const ContactTopology* old, const std::vector<uint8_t>* dirty,
+              ContactTopology& cm) {
+    cm = ContactTopology{};
+    cm.num_real_nodes = m.num_nodes();
+    cm.edge_target_base = cm.num_real_nodes;
+    if (m.contact.algorithm == ContactAlgorithm::None) return;
+
+    cm.body_fixed.resize(static_cast<size_t>(m.num_bodies()));
+    for (BodyId b = 0; b < m.num_bodies(); ++b)
+        cm.body_fixed[b] = m.bodies[b].fixed ? 1 : 0;
+    cm.node_on_boundary.assign(static_cast<size_t>(m.num_nodes()), 0);
+    cm.node_dist.assign(static_cast<size_t>(m.num_nodes()), 0.0);
+    cm.node_dist_edge.assign(static_cast<size_t>(m.num_nodes()), -1);
+    cm.body_bnode_begin.push_back(0);
+    cm.body_bedge_begin.push_back(0);
+    cm.body_sub_begin.push_back(0);
+    cm.body_virt_begin.push_back(0);
+    cm.body_chord_begin.push_back(0);
+    cm.body_btri_begin.push_back(0);
+    TopologyBuilder tb(m, cm);
+    for (BodyId b = 0; b < m.num_bodies(); ++b) {
+        cm.body_fallback.push_back(0);
+        if (old != nullptr && (*dirty)[static_cast<size_t>(b)] == 0) {
+            splice_body(m, *old, b, cm);
+        } else {
+            tb.body(b);
+        }
+        cm.body_virt_begin.push_back(cm.num_virtual());
+        cm.body_chord_begin.push_back(static_cast<int32_t>(cm.chords.size()));
+        cm.body_btri_begin.push_back(static_cast<int32_t>(cm.boundary_tris.size()));
+    }
+    cm.node_dist.resize(static_cast<size_t>(cm.num_contact_nodes()), 0.0);
+    cm.node_dist_edge.resize(static_cast<size_t>(cm.num_contact_nodes()), -1);
+    build_body_contact_nodes(cm);
+
+    // scale of the force on a target node (docs/theory.md §6.11): m_j / mbar (eq. 19) or
+    // l_j / lbar with l_j = half the lengths of the node's boundary edges (its tributary
+    // length), lbar = the smallest boundary edge; m_dt is the mass of the stable-dt bound
+    const Real m_bar = m.contact.m_bar;
+    cm.node_scale.assign(static_cast<size_t>(m.num_nodes()), 0.0);
+    cm.l_bar = 0;
+    cm.m_dt = m_bar;
+    if (m.contact.scaling == ContactScaling::Mass) {
+        for (NodeId i = 0; i < m.num_nodes(); ++i)
+            cm.node_scale[i] = m.node_mass[i] / m_bar;
+    } else {
+        Real l_bar = std::numeric_limits<Real>::infinity();
+        for (const auto& e : cm.boundary_edges) {
+            const Real len = norm(m.node_x0[e[1]] - m.node_x0[e[0]]);
+            l_bar = std::min(l_bar, len);
+            cm.node_scale[e[0]] += 0.5 * len;
+            cm.node_scale[e[1]] += 0.5 * len;
+        }
+        if (!(l_bar > 0) || !std::isfinite(l_bar)) l_bar = 0;
+        cm.l_bar = l_bar;
+        Real m_dt = std::numeric_limits<Real>::infinity();
+        for (NodeId i = 0; i < m.num_nodes(); ++i) {
+            if (cm.node_scale[i] == 0) continue;
+            cm.node_scale[i] /= l_bar;
+            if (m.node_inv_mass[i] > 0) m_dt = std::min(m_dt, m.node_mass[i] / cm.node_scale[i]);
+        }
+        cm.m_dt = std::isfinite(m_dt) ? m_dt : m_bar;
+    }
+
+    cm.edge_target_base = cm.num_contact_nodes();
+    if (m.contact.edge_targets && m.contact.algorithm == ContactAlgorithm::Smooth)
+        add_edge_targets(m, cm);
+
+    // baseline B: phi_B per contactor sub-triangle (spec §1.3, docs/theory.md §7.4)
+    if (m.contact.algorithm == ContactAlgorithm::LegacyBoundary) {
+        cm.sub_legacy_b = build_legacy_boundary_field(m, cm).sub;
+    }
+}
+
 }  // namespace
 
-void build_body_contact_nodes(ContactModel& cm) {
+void build_body_contact_nodes(ContactTopology& cm) {
     cm.body_cnode.clear();
     cm.body_cnode_begin.assign(1, 0);
     cm.body_cnode_nreal.clear();
@@ -526,34 +652,9 @@ void build_body_contact_nodes(ContactModel& cm) {
     }
 }
 
-void build_contact_topology(Model& m) {
+void resolve_contact_params(Model& m) {
     ContactModel& cm = m.contact;
     cm.resolved.clear();
-    cm.virt_parent.clear();
-    cm.virt_weight.clear();
-    cm.node_dist.clear();
-    cm.node_dist_edge.clear();
-    cm.node_on_boundary.clear();
-    cm.boundary_nodes.clear();
-    cm.body_bnode_begin.clear();
-    cm.boundary_edges.clear();
-    cm.body_bedge_begin.clear();
-    cm.chords.clear();
-    cm.boundary_tris.clear();
-    cm.sub_tri.clear();
-    cm.sub_body.clear();
-    cm.sub_parent.clear();
-    cm.body_sub_begin.clear();
-    cm.sub_legacy_b.clear();
-    cm.body_cnode.clear();
-    cm.body_cnode_begin.clear();
-    cm.body_cnode_nreal.clear();
-    cm.sub_local.clear();
-    cm.num_fallback_nodes = 0;
-    cm.edge_scale.clear();
-    cm.target_dt_factor = 1;
-    cm.num_real_nodes = m.num_nodes();
-    cm.edge_target_base = cm.num_real_nodes;
     if (cm.algorithm == ContactAlgorithm::None) return;
     // the legacy potentials (docs/theory.md §7) use the same topology: baseline A its
     // boundary_tris, parameters and buffer, baseline B also the sub-triangles
@@ -584,57 +685,43 @@ void build_contact_topology(Model& m) {
                                      "{}; every body, fixed ones included, needs a density",
                                      cm.m_bar));
     }
+}
 
-    cm.body_fixed.resize(static_cast<size_t>(m.num_bodies()));
-    for (BodyId b = 0; b < m.num_bodies(); ++b)
-        cm.body_fixed[b] = m.bodies[b].fixed ? 1 : 0;
-    cm.node_on_boundary.assign(static_cast<size_t>(m.num_nodes()), 0);
-    cm.node_dist.assign(static_cast<size_t>(m.num_nodes()), 0.0);
-    cm.node_dist_edge.assign(static_cast<size_t>(m.num_nodes()), -1);
-    cm.body_bnode_begin.push_back(0);
-    cm.body_bedge_begin.push_back(0);
-    cm.body_sub_begin.push_back(0);
-    TopologyBuilder tb(m);
-    for (BodyId b = 0; b < m.num_bodies(); ++b)
-        tb.body(b);
-    cm.node_dist.resize(static_cast<size_t>(cm.num_contact_nodes()), 0.0);
-    cm.node_dist_edge.resize(static_cast<size_t>(cm.num_contact_nodes()), -1);
-    build_body_contact_nodes(cm);
-
-    // scale of the force on a target node (docs/theory.md §6.11): m_j / mbar (eq. 19) or
-    // l_j / lbar with l_j = half the lengths of the node's boundary edges (its tributary
-    // length), lbar = the smallest boundary edge; m_dt is the mass of the stable-dt bound
-    cm.node_scale.assign(static_cast<size_t>(m.num_nodes()), 0.0);
-    cm.l_bar = 0;
-    cm.m_dt = cm.m_bar;
-    if (cm.scaling == ContactScaling::Mass) {
-        for (NodeId i = 0; i < m.num_nodes(); ++i)
-            cm.node_scale[i] = m.node_mass[i] / cm.m_bar;
-    } else {
-        Real l_bar = std::numeric_limits<Real>::infinity();
-        for (const auto& e : cm.boundary_edges) {
-            const Real len = norm(m.node_x0[e[1]] - m.node_x0[e[0]]);
-            l_bar = std::min(l_bar, len);
-            cm.node_scale[e[0]] += 0.5 * len;
-            cm.node_scale[e[1]] += 0.5 * len;
-        }
-        if (!(l_bar > 0) || !std::isfinite(l_bar)) l_bar = 0;
-        cm.l_bar = l_bar;
-        Real m_dt = std::numeric_limits<Real>::infinity();
-        for (NodeId i = 0; i < m.num_nodes(); ++i) {
-            if (cm.node_scale[i] == 0) continue;
-            cm.node_scale[i] /= l_bar;
-            if (m.node_inv_mass[i] > 0) m_dt = std::min(m_dt, m.node_mass[i] / cm.node_scale[i]);
-        }
-        cm.m_dt = std::isfinite(m_dt) ? m_dt : cm.m_bar;
+void build_topology(const Model& m, ContactTopology& t) {
+    assemble(m, nullptr, nullptr, t);
+    if constexpr (kAssertsEnabled) {
+        const std::vector<std::string> bad = validate_topology(m, t, 1);
+        FDEM_ASSERT(bad.empty(), bad.front().c_str());
     }
+}
 
-    cm.edge_target_base = cm.num_contact_nodes();
-    if (cm.edge_targets && cm.algorithm == ContactAlgorithm::Smooth) add_edge_targets(m);
+ContactTopology build_topology(const Model& m) {
+    ContactTopology t;
+    build_topology(m, t);
+    return t;
+}
 
-    // baseline B: phi_B per contactor sub-triangle (spec §1.3, docs/theory.md §7.4)
-    if (cm.algorithm == ContactAlgorithm::LegacyBoundary) {
-        cm.sub_legacy_b = build_legacy_boundary_field(m).sub;
+void rebuild_topology(const Model& m, std::span<const BodyId> dirty, ContactTopology& t) {
+    if (m.contact.algorithm == ContactAlgorithm::None) {
+        assemble(m, nullptr, nullptr, t);
+        return;
+    }
+    FDEM_ASSERT(t.body_virt_begin.size() == static_cast<size_t>(m.num_bodies()) + 1,
+                "rebuild_topology: t is not a topology of this model's bodies");
+    std::vector<uint8_t> flag(static_cast<size_t>(m.num_bodies()), 0);
+    for (const BodyId b : dirty) {
+        if (b < 0 || b >= m.num_bodies()) {
+            throw std::invalid_argument(
+                fmt::format("rebuild_topology: body {} outside 0 .. {}", b, m.num_bodies() - 1));
+        }
+        flag[static_cast<size_t>(b)] = 1;
+    }
+    ContactTopology next;
+    assemble(m, &t, &flag, next);
+    t = std::move(next);
+    if constexpr (kAssertsEnabled) {
+        const std::vector<std::string> bad = validate_topology(m, t, 1);
+        FDEM_ASSERT(bad.empty(), bad.front().c_str());
     }
 }
 

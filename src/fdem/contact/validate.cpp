@@ -21,11 +21,12 @@ Key key(NodeId a, NodeId b) {
 
 class Validator {
 public:
-    Validator(const Model& m, size_t max_messages) : m_(m), t_(m.contact), max_(max_messages) {}
+    Validator(const Model& m, const ContactTopology& t, size_t max_messages)
+        : m_(m), t_(t), max_(max_messages) {}
 
     std::vector<std::string> run() {
         if (!sizes()) return out_;
-        if (t_.algorithm == ContactAlgorithm::None) return out_;
+        if (m_.contact.algorithm == ContactAlgorithm::None) return out_;
         if (!ranges()) return out_;
         for (BodyId b = 0; b < m_.num_bodies(); ++b)
             body_edges(b);
@@ -76,7 +77,7 @@ private:
         if (t_.edge_target_base != t_.num_contact_nodes())
             fail("sizes: edge_target_base = {}, expected num_contact_nodes() = {}",
                  t_.edge_target_base, t_.num_contact_nodes());
-        if (t_.algorithm == ContactAlgorithm::None) {
+        if (m_.contact.algorithm == ContactAlgorithm::None) {
             if (!t_.sub_tri.empty() || !t_.boundary_edges.empty() || t_.num_virtual() != 0)
                 fail("sizes: contact is off but the topology is not empty");
             return out_.size() == before;
@@ -98,10 +99,15 @@ private:
         eq("body_sub_begin", t_.body_sub_begin.size(), nb() + 1);
         eq("body_cnode_begin", t_.body_cnode_begin.size(), nb() + 1);
         eq("body_cnode_nreal", t_.body_cnode_nreal.size(), nb());
-        const bool edge_targets = t_.edge_targets && t_.algorithm == ContactAlgorithm::Smooth;
+        eq("body_virt_begin", t_.body_virt_begin.size(), nb() + 1);
+        eq("body_chord_begin", t_.body_chord_begin.size(), nb() + 1);
+        eq("body_btri_begin", t_.body_btri_begin.size(), nb() + 1);
+        eq("body_fallback", t_.body_fallback.size(), nb());
+        const bool edge_targets =
+            m_.contact.edge_targets && m_.contact.algorithm == ContactAlgorithm::Smooth;
         eq("edge_scale", t_.edge_scale.size(), edge_targets ? t_.boundary_edges.size() : 0);
         eq("sub_legacy_b", t_.sub_legacy_b.size(),
-           t_.algorithm == ContactAlgorithm::LegacyBoundary ? ns : 0);
+           m_.contact.algorithm == ContactAlgorithm::LegacyBoundary ? ns : 0);
         return out_.size() == before;
     }
 
@@ -120,6 +126,15 @@ private:
         range("body_bedge_begin", t_.body_bedge_begin, t_.boundary_edges.size());
         range("body_sub_begin", t_.body_sub_begin, t_.sub_tri.size());
         range("body_cnode_begin", t_.body_cnode_begin, t_.body_cnode.size());
+        range("body_virt_begin", t_.body_virt_begin, t_.virt_parent.size());
+        range("body_chord_begin", t_.body_chord_begin, t_.chords.size());
+        range("body_btri_begin", t_.body_btri_begin, t_.boundary_tris.size());
+        int32_t fallback = 0;
+        for (const int32_t n : t_.body_fallback)
+            fallback += n;
+        if (fallback != t_.num_fallback_nodes)
+            fail("body_fallback: the bodies' counts add up to {}, num_fallback_nodes = {}",
+                 fallback, t_.num_fallback_nodes);
         for (BodyId b = 0; b < m_.num_bodies(); ++b) {
             if ((t_.body_fixed[b] != 0) != m_.bodies[b].fixed)
                 fail("body_fixed: body {} has {}, Body::fixed is {}", b, t_.body_fixed[b],
@@ -279,6 +294,27 @@ private:
                     if (i >= t_.num_real_nodes)
                         used[static_cast<size_t>(i - t_.num_real_nodes)] = 1;
                 }
+            }
+        }
+        for (BodyId b = 0; b < m_.num_bodies(); ++b) {
+            for (int32_t v = t_.body_virt_begin[b]; v < t_.body_virt_begin[b + 1]; ++v) {
+                if (m_.node_body[t_.virt_parent[v][0]] != b)
+                    fail(
+                        "body_virt_begin: virtual node {} in the range of body {} has parents in "
+                        "body {}",
+                        v, b, m_.node_body[t_.virt_parent[v][0]]);
+            }
+            for (int32_t c = t_.body_chord_begin[b]; c < t_.body_chord_begin[b + 1]; ++c) {
+                if (!in_body(t_.chords[c][0], b))
+                    fail("body_chord_begin: chord {} in the range of body {} is not in it", c, b);
+            }
+            for (int32_t k = t_.body_btri_begin[b]; k < t_.body_btri_begin[b + 1]; ++k) {
+                const TriId tri = t_.boundary_tris[k];
+                if (tri < m_.bodies[b].tri_begin || tri >= m_.bodies[b].tri_end)
+                    fail(
+                        "body_btri_begin: boundary element {} in the range of body {} is not in "
+                        "it",
+                        tri, b);
             }
         }
         for (size_t v = 0; v < t_.virt_parent.size(); ++v) {
@@ -441,7 +477,7 @@ private:
     }
 
     const Model& m_;
-    const ContactModel& t_;
+    const ContactTopology& t_;
     size_t max_;
     std::vector<std::string> out_;
     std::vector<Key> interior_bb_;  // interior edges joining two boundary nodes, all bodies
@@ -449,8 +485,9 @@ private:
 
 }  // namespace
 
-std::vector<std::string> validate_topology(const Model& m, size_t max_messages) {
-    return Validator(m, max_messages).run();
+std::vector<std::string> validate_topology(const Model& m, const ContactTopology& t,
+                                           size_t max_messages) {
+    return Validator(m, t, max_messages).run();
 }
 
 }  // namespace fdem

@@ -7,17 +7,20 @@
 #include <string>
 #include <vector>
 
+#include "fdem/contact_topology.hpp"
 #include "fdem/model.hpp"
 
 namespace fdem {
 
-/// Every violated invariant of the contact topology of m (empty: valid). Each message starts
+/// Every violated invariant of t as the contact topology of m (empty: valid). Each message starts
 /// with the name of the array or invariant it concerns ("boundary_edges: ...", tests match on
 /// it), then the entity ids. At most max_messages are returned. The invariants:
 ///  * sizes: per-node, per-contact-node, per-sub-triangle, per-virtual-node and per-body arrays
 ///    have the sizes of what they index; edge_target_base = num_contact_nodes()
-///  * ranges: body_bnode_begin, body_bedge_begin, body_sub_begin, body_cnode_begin start at 0,
-///    never decrease and end at the size of their array (one entry per body + 1)
+///  * ranges: body_bnode_begin, body_bedge_begin, body_sub_begin, body_cnode_begin,
+///    body_virt_begin, body_chord_begin, body_btri_begin start at 0, never decrease and end at
+///    the size of their array (one entry per body + 1); what each body's range holds belongs to
+///    the body; body_fallback adds up to num_fallback_nodes
 ///  * boundary_edges: per body in strictly ascending (min, max) node order (the binary searches
 ///    of the builder rely on it), both nodes in the body, used by exactly one triangle of the
 ///    body (really on the boundary) and oriented as in that triangle (material on the left);
@@ -41,6 +44,7 @@ namespace fdem {
 ///    segment (fallback, eq. 6.4)
 ///  * scales: node_scale finite, >= 0, > 0 on boundary nodes; edge_scale (edge targets) finite
 ///    and > 0; body_fixed = Body::fixed; sub_legacy_b parallel to sub_tri for baseline B only
-std::vector<std::string> validate_topology(const Model& m, size_t max_messages = 20);
+std::vector<std::string> validate_topology(const Model& m, const ContactTopology& t,
+                                           size_t max_messages = 20);
 
 }  // namespace fdem

@@ -15,25 +15,25 @@ namespace fdem {
 
 namespace {
 
-inline Vec2 cpos(const ContactModel& cm, const Vec2* x, const Vec2* xv, NodeId i) {
-    return i < cm.num_real_nodes ? x[i] : xv[i - cm.num_real_nodes];
+inline Vec2 cpos(const ContactTopology& ct, const Vec2* x, const Vec2* xv, NodeId i) {
+    return i < ct.num_real_nodes ? x[i] : xv[i - ct.num_real_nodes];
 }
 
 // bounding circles of the contactor sub-triangles at the current positions; returns the largest
 // radius
-Real bounding_circles(const Model& m, const Vec2* x, const Vec2* xv, BroadPhaseScratch& g) {
-    const ContactModel& cm = m.contact;
-    const int32_t nt = cm.num_sub_tris();
+Real bounding_circles(const ContactTopology& ct, const Vec2* x, const Vec2* xv,
+                      BroadPhaseScratch& g) {
+    const int32_t nt = ct.num_sub_tris();
     // grow-only: find_candidates keeps cell-ordered copies behind the first nt entries
     if (g.tri_center.size() < static_cast<size_t>(nt)) g.tri_center.resize(static_cast<size_t>(nt));
     if (g.tri_radius.size() < static_cast<size_t>(nt)) g.tri_radius.resize(static_cast<size_t>(nt));
     Vec2* __restrict center = g.tri_center.data();
     Real* __restrict radius = g.tri_radius.data();
-    const std::array<NodeId, 3>* sub = cm.sub_tri.data();
+    const std::array<NodeId, 3>* sub = ct.sub_tri.data();
     Real r_max = 0;
     for (int32_t t = 0; t < nt; ++t) {
         const auto& q = sub[t];
-        const Vec2 a = cpos(cm, x, xv, q[0]), b = cpos(cm, x, xv, q[1]), c = cpos(cm, x, xv, q[2]);
+        const Vec2 a = cpos(ct, x, xv, q[0]), b = cpos(ct, x, xv, q[1]), c = cpos(ct, x, xv, q[2]);
         const Vec2 ctr = (a + b + c) / 3.0;
         const Real r = std::sqrt(std::max({norm2(a - ctr), norm2(b - ctr), norm2(c - ctr)}));
         center[t] = ctr;
@@ -61,11 +61,11 @@ void clear_candidates(Candidates& out) {
 // rule is_contactor_for there (a comparison of keys, detail::RoleTest), so the node's own body
 // never reaches the hit list; the hits are put in ascending id order (= body order) and emitted
 // branch-free. Output order = (node ascending, tri ascending) as before, independent of the grid.
-void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, Candidates& out,
-                     BroadPhaseScratch& g, BroadKernel kernel) {
+void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, const Vec2* xv,
+                     Candidates& out, BroadPhaseScratch& g, BroadKernel kernel) {
     const ContactModel& cm = m.contact;
     const Real b = cm.buffer;
-    const int32_t nt = cm.num_sub_tris();
+    const int32_t nt = ct.num_sub_tris();
     if (nt == 0) {
         clear_candidates(out);
         out.begin.push_back(0);
@@ -73,7 +73,7 @@ void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, Candidates& 
     }
     if (m.num_bodies() >= detail::kFixedKey)
         throw std::length_error("find_candidates: too many bodies");
-    const Real r_max = bounding_circles(m, x, xv, g);
+    const Real r_max = bounding_circles(ct, x, xv, g);
 
     // grid over the centroids (detect/grid.hpp); cell >= r_max + b, so every accepted centroid
     // lies in the 3x3 block around the node's cell. g.query is the fill cursor here, then the
@@ -95,7 +95,7 @@ void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, Candidates& 
     Real* __restrict reach2 = cy + n;
     int32_t* __restrict key = g.tri_cell.data();
     const int32_t* __restrict items = g.cell_items.data();
-    const BodyId* __restrict sub_body = cm.sub_body.data();
+    const BodyId* __restrict sub_body = ct.sub_body.data();
     for (size_t k = 0; k < n; ++k) {
         const int32_t t = items[k];
         cx[k] = center_id[t].x;
@@ -103,7 +103,7 @@ void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, Candidates& 
         const Real reach = radius_id[t] + b;
         reach2[k] = reach * reach;
         const BodyId c = sub_body[t];
-        key[k] = c + (cm.body_fixed[static_cast<size_t>(c)] != 0 ? detail::kFixedKey : 0);
+        key[k] = c + (ct.body_fixed[static_cast<size_t>(c)] != 0 ? detail::kFixedKey : 0);
     }
     detail::CellTris a;
     a.cx = cx;
@@ -126,40 +126,41 @@ void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, Candidates& 
     // (boundary nodes, then the edge targets of docs/theory.md §6.12: ascending target ids)
     auto query = [&](NodeId j) {
         detail::Block blk;
-        if (!detail::node_block(m, ng, j, target_point(cm, x, j), blk)) return;
+        if (!detail::node_block(m, ct, ng, j, target_point(ct, x, j), blk)) return;
         const int32_t nh =
             simd ? detail::scan_block_avx512(a, blk, hits) : detail::scan_block(a, blk, hits);
         detail::sort_hits(hits, nh);
-        if (nh > 0) detail::emit(cm, j, hits, nh, w);
+        if (nh > 0) detail::emit(ct, j, hits, nh, w);
     };
-    for (NodeId j : cm.boundary_nodes)
+    for (NodeId j : ct.boundary_nodes)
         query(j);
-    for (NodeId j = cm.edge_target_base; j < cm.target_end(); ++j)
+    for (NodeId j = ct.edge_target_base; j < ct.target_end(); ++j)
         query(j);
     w.finish();
 }
 
-void find_candidates_brute_force(const Model& m, const Vec2* x, const Vec2* xv, Candidates& out,
-                                 BroadPhaseScratch& g) {
+void find_candidates_brute_force(const Model& m, const ContactTopology& ct, const Vec2* x,
+                                 const Vec2* xv, Candidates& out, BroadPhaseScratch& g) {
     const ContactModel& cm = m.contact;
-    bounding_circles(m, x, xv, g);
+    bounding_circles(ct, x, xv, g);
     detail::CandWriter w(out);
     auto query = [&](NodeId j) {
         g.query.clear();
-        const Vec2 xj = target_point(cm, x, j);
-        for (int32_t t = 0; t < cm.num_sub_tris(); ++t) {
+        const Vec2 xj = target_point(ct, x, j);
+        for (int32_t t = 0; t < ct.num_sub_tris(); ++t) {
             const Real reach = g.tri_radius[t] + cm.buffer;
             if (norm2(xj - g.tri_center[t]) >= reach * reach) continue;
-            if (!is_contactor_for(cm, cm.sub_body[t], m.node_body[target_node(cm, j)])) continue;
+            if (!is_contactor_for(cm, ct, ct.sub_body[t], m.node_body[target_node(ct, j)]))
+                continue;
             g.query.push_back(t);
         }
         if (!g.query.empty()) {
-            detail::emit(cm, j, g.query.data(), static_cast<int32_t>(g.query.size()), w);
+            detail::emit(ct, j, g.query.data(), static_cast<int32_t>(g.query.size()), w);
         }
     };
-    for (NodeId j : cm.boundary_nodes)
+    for (NodeId j : ct.boundary_nodes)
         query(j);
-    for (NodeId j = cm.edge_target_base; j < cm.target_end(); ++j)
+    for (NodeId j = ct.edge_target_base; j < ct.target_end(); ++j)
         query(j);
     w.finish();
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "fdem/candidates.hpp"
+#include "fdem/contact_topology.hpp"
 #include "fdem/model.hpp"
 
 namespace fdem {
@@ -12,17 +13,17 @@ namespace fdem {
 /// always the portable loop (tests compare the two).
 enum class BroadKernel { Auto, Scalar };
 
-/// Rebuild the candidate list out from current positions: x = real node positions, xv = virtual
-/// node positions (ContactState::xv). A couple (node j, sub-triangle tau) is accepted when
-/// is_contactor_for(body(tau), body(j)) and |x_j - c_tau| < r_tau + b, with c_tau the centroid
+/// Rebuild the candidate list out of topology ct from current positions: x = real node positions,
+/// xv = virtual node positions (ContactState::xv). A couple (node j, sub-triangle tau) is accepted
+/// when is_contactor_for(body(tau), body(j)) and |x_j - c_tau| < r_tau + b, with c_tau the centroid
 /// and r_tau the largest centroid-vertex distance. Output is sorted by (node, body, tri) and does
 /// not depend on threading. Writes only out and its own grid scratch g (both grow only); the
 /// caller (contact/contact.cpp) decides when to run it and owns both.
-void find_candidates(const Model& m, const Vec2* x, const Vec2* xv, Candidates& out,
-                     BroadPhaseScratch& g, BroadKernel kernel = BroadKernel::Auto);
+void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, const Vec2* xv,
+                     Candidates& out, BroadPhaseScratch& g, BroadKernel kernel = BroadKernel::Auto);
 
 /// O(N_nodes * N_tris) reference implementation of find_candidates (tests, T11).
-void find_candidates_brute_force(const Model& m, const Vec2* x, const Vec2* xv, Candidates& out,
-                                 BroadPhaseScratch& g);
+void find_candidates_brute_force(const Model& m, const ContactTopology& ct, const Vec2* x,
+                                 const Vec2* xv, Candidates& out, BroadPhaseScratch& g);
 
 }  // namespace fdem

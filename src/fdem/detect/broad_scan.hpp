@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "fdem/candidates.hpp"
+#include "fdem/contact_topology.hpp"
 #include "fdem/math.hpp"
 #include "fdem/model.hpp"
 
@@ -101,10 +102,11 @@ struct Block {
 
 /// Set up the query of target node j at xj; false when it has no contactor (a fixed target of
 /// a one-way model) or lies outside the grid by more than a cell (or is NaN).
-inline bool node_block(const Model& m, const NodeGrid& g, NodeId j, Vec2 xj, Block& q) {
+inline bool node_block(const Model& m, const ContactTopology& ct, const NodeGrid& g, NodeId j,
+                       Vec2 xj, Block& q) {
     const ContactModel& cm = m.contact;
-    const BodyId bj = m.node_body[target_node(cm, j)];
-    const bool fixed_j = cm.body_fixed[static_cast<size_t>(bj)] != 0;
+    const BodyId bj = m.node_body[target_node(ct, j)];
+    const bool fixed_j = ct.body_fixed[static_cast<size_t>(bj)] != 0;
     if (!cm.two_way && fixed_j) return false;  // one-way: a fixed body is never a target
     q.xj = xj;
     q.role.t = bj;  // is_contactor_for(., bj) as a test on the key
@@ -194,10 +196,10 @@ inline int32_t scan_sorted(const CellTris& a, const Block& q, int32_t* __restric
 // of j. A pair starts where the body changes; branch-free: the pair slot at the cursor is written
 // for every sub-triangle and kept (cursor advanced) only when the body is new (reserve(n) leaves
 // room for the extra slot, finish() writes the last cand_begin).
-inline void emit(const ContactModel& cm, NodeId j, const int32_t* h, int32_t n,
+inline void emit(const ContactTopology& ct, NodeId j, const int32_t* h, int32_t n,
                  detail::CandWriter& w) {
     w.reserve(static_cast<size_t>(n));
-    const BodyId* __restrict sub_body = cm.sub_body.data();
+    const BodyId* __restrict sub_body = ct.sub_body.data();
     NodeId* __restrict node = w.node;
     BodyId* __restrict body = w.body;
     int32_t* __restrict begin = w.begin;

@@ -53,17 +53,18 @@ std::string check_run(const Model& m, const State& s, const RunSettings& run, En
         // the deepest of them (contact/contact.cpp records it), with body names for the user
         const NodeId j = cs.lost_node;
         const BodyId into = cs.lost_body;
-        const ContactModel& cm = m.contact;
-        if (j >= 0 && j < cm.target_end() && into >= 0 && into < m.num_bodies()) {
-            const BodyId bj = m.node_body[target_node(cm, j)];
-            const Vec2 xj = target_point(cm, s.x.data(), j);
+        const ContactTopology& ct = s.topology;
+        if (j >= 0 && j < ct.target_end() && into >= 0 && into < m.num_bodies()) {
+            const BodyId bj = m.node_body[target_node(ct, j)];
+            const Vec2 xj = target_point(ct, s.x.data(), j);
             // an edge target (docs/theory.md §6.12) is named by its edge's end nodes
             const std::string who =
                 j < m.num_nodes()
                     ? fmt::format("node {}", j)
-                    : fmt::format("the midpoint of boundary edge {}-{}",
-                                  cm.boundary_edges[static_cast<size_t>(j - cm.edge_target_base)][0],
-                                  cm.boundary_edges[static_cast<size_t>(j - cm.edge_target_base)][1]);
+                    : fmt::format(
+                          "the midpoint of boundary edge {}-{}",
+                          ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)][0],
+                          ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)][1]);
             what += fmt::format(
                 "; {} (body {} \"{}\", at ({:.6g}, {:.6g}) m, d / layer = {:.3g} when last "
                 "in contact) is inside body {} \"{}\"",

@@ -314,7 +314,7 @@ private:
 
 }  // namespace
 
-uint64_t model_hash(const Model& m, Real dt) {
+uint64_t model_hash(const Model& m, const ContactTopology& t, Real dt) {
     Hasher h;
     put(h, dt);
     put(h, m.node_x0);
@@ -394,13 +394,13 @@ uint64_t model_hash(const Model& m, Real dt) {
     put(h, c.m_bar);
     put(h, c.deep_ratio_limit);
     put(h, c.scaling);
-    put(h, c.node_scale);
-    put(h, c.edge_scale);
-    put(h, c.node_dist);
-    put(h, c.virt_parent);
-    put(h, c.virt_weight);
-    put(h, c.sub_tri);
-    put(h, c.sub_body);
+    put(h, t.node_scale);
+    put(h, t.edge_scale);
+    put(h, t.node_dist);
+    put(h, t.virt_parent);
+    put(h, t.virt_weight);
+    put(h, t.sub_tri);
+    put(h, t.sub_body);
     return h.h;
 }
 
@@ -419,7 +419,7 @@ void write_checkpoint(const std::string& path, const Model& m, const State& s,
     put(w, kCheckpointFormat);
     put(w, kEndianMarker);
     put(w, std::string(FDEM_VERSION));
-    put(w, model_hash(m, s.dt));
+    put(w, model_hash(m, s.topology, s.dt));
     put_state(w, s);
     put_progress(w, progress);
     put(w, fnv1a(kFnvOffset, w.buf.data(), w.buf.size()));
@@ -473,12 +473,12 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     }
     uint64_t hash = 0;
     r.get(hash);
-    if (hash != model_hash(m, s.dt)) {
+    if (hash != model_hash(m, s.topology, s.dt)) {
         r.fail(
             fmt::format("it was written for a different model or time step (model hash "
                         "{:016x}, this scenario gives {:016x}): the scenario, a mesh or dt "
                         "changed since; rerun from t = 0 or restore the original scenario",
-                        hash, model_hash(m, s.dt)));
+                        hash, model_hash(m, s.topology, s.dt)));
     }
 
     // state
@@ -543,13 +543,13 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     r.get(l.active);
 
     // ids read back must index the model (a corrupt file must not crash the contact code)
-    const int32_t nb = m.num_bodies(), ncn = m.contact.target_end();  // target ids
-    const int32_t nsub = m.contact.num_sub_tris();
+    const int32_t nb = m.num_bodies(), ncn = s.topology.target_end();  // target ids
+    const int32_t nsub = s.topology.num_sub_tris();
     const auto bad_id = [](int32_t id, int32_t n) { return id < 0 || id >= n; };
     bool ok = c.cand.node.size() == c.cand.body.size() &&
               (c.cand.node.empty() ? c.cand.begin.size() <= 1
                                    : c.cand.begin.size() == c.cand.node.size() + 1) &&
-              c.xv.size() == static_cast<size_t>(m.contact.num_virtual()) &&
+              c.xv.size() == static_cast<size_t>(s.topology.num_virtual()) &&
               c.vv.size() == c.xv.size();
     for (size_t p = 0; ok && p < c.cand.node.size(); ++p) {
         ok = !bad_id(c.cand.node[p], ncn) && !bad_id(c.cand.body[p], nb);

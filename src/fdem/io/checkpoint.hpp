@@ -46,9 +46,10 @@ struct RunProgress {
 };
 
 /// Hash of everything in the built Model that affects the physics (geometry, masses,
-/// materials, boundary conditions, kicks, damping, gravity, contact parameters and topology)
-/// and of dt. End time and output settings are not included: a restart may change them.
-uint64_t model_hash(const Model& m, Real dt);
+/// materials, boundary conditions, kicks, damping, gravity, contact parameters), of the contact
+/// topology t it was run with (State::topology) and of dt. End time and output settings are not
+/// included: a restart may change them.
+uint64_t model_hash(const Model& m, const ContactTopology& t, Real dt);
 
 /// Write a checkpoint atomically (temporary file, then rename). Throws SimulationError naming
 /// the file if it cannot be written.

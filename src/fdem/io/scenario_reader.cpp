@@ -195,6 +195,9 @@ public:
                 for (NodeId& n : e.node_map.model_nodes)
                     n = node_new[static_cast<size_t>(n)];
             }
+            // the contact topology of the bodies as loaded, for the load-time checks and the
+            // stable time step (make_state() builds State::topology the same way)
+            topo_ = build_topology(sc.model);
         } catch (const InputError& e) {
             if (!e.location().file.empty()) {
                 throw;
@@ -1257,7 +1260,7 @@ private:
         RunSettings& run = sc.run;
         const Model& m = sc.model;
         TriId tri = kNone;
-        const Real stable = stable_time_step(m, &tri);
+        const Real stable = stable_time_step(m, topo_, &tri);
         run.stable_dt = stable;
         run.limiting_tri = tri;
         const std::string line = src_.line(dt_loc_.line);
@@ -1293,7 +1296,7 @@ private:
                 // (eq. 6.15): the linear bound of the contact is right (0.90 of 2 / omega_max
                 // measured by power iteration), but a penalty spring that switches on and off
                 // gains energy at omega_max dt ~ 0.9 (docs/theory.md §6.9)
-                const Real contact = contact_stable_dt(m);
+                const Real contact = contact_stable_dt(m, topo_);
                 const Real element = element_stable_time_step(m);
                 run.dt =
                     std::min(kDefaultElementFraction * element, kDefaultContactFraction * contact);
@@ -1403,7 +1406,7 @@ private:
         if (m.contact.algorithm == ContactAlgorithm::None) return;
         // one warning per [[body]] entry (an entry with pieces = "separate" can make thousands of
         // bodies): its worst body (largest near_dist / dist), and how many others share the issue
-        const std::vector<ThinLayer> thin = find_thin_layers(m);
+        const std::vector<ThinLayer> thin = find_thin_layers(m, topo_);
         std::vector<size_t> worst(bodies_.size(), thin.size());
         std::vector<int32_t> affected(bodies_.size(), 0);
         for (size_t k = 0; k < thin.size(); ++k) {
@@ -1425,14 +1428,14 @@ private:
             }
             sc.warnings.push_back(fmt::format("{}:{}:{}: {}{}", src_.name,
                                               e->source().begin.line, e->source().begin.column,
-                                              thin_layer_warning(m, thin[worst[g]]), more));
+                                              thin_layer_warning(m, topo_, thin[worst[g]]), more));
         }
         if (m.contact.allow_initial_overlap) return;
-        const InitialOverlap o = find_initial_overlap(m);
+        const InitialOverlap o = find_initial_overlap(m, topo_);
         if (!o.found) return;
         const Body& a = m.bodies[o.body];
         const Body& b = m.bodies[o.other];
-        const ContactModel& cm = m.contact;
+        const ContactTopology& cm = topo_;
         std::string point;
         switch (o.point) {
             case InitialOverlap::Point::Node:
@@ -1466,6 +1469,7 @@ private:
     std::vector<BodyEntry> bodies_;
     std::unordered_map<std::string, size_t> body_by_name_;  ///< name -> index into bodies_
     std::vector<LoadedMesh> meshes_;
+    ContactTopology topo_;  ///< topology of the loaded bodies (load-time checks, stable dt)
 };
 
 }  // namespace

@@ -253,9 +253,10 @@ void write_vtu(const std::string& path, const Model& m, const State& s,
     // the nodal contact distance d_i of paper eqs. 1-2 (0 on the boundary); ParaView's linear
     // interpolation of it over each triangle is the distance field of paper eq. 3 wherever the
     // element needed no virtual-node split (theory §6)
-    const ContactModel& cm = m.contact;
-    if (cm.algorithm != ContactAlgorithm::None && static_cast<int64_t>(cm.node_dist.size()) >= nn) {
-        const Real* dist = cm.node_dist.data();
+    const ContactTopology& ct = s.topology;
+    if (m.contact.algorithm != ContactAlgorithm::None &&
+        static_cast<int64_t>(ct.node_dist.size()) >= nn) {
+        const Real* dist = ct.node_dist.data();
         point.push_back({"contact_distance", VtkType::Float64, 1, nn,
                          [dist](int64_t b, int64_t e, unsigned char* out) {
                              double* o = reinterpret_cast<double*>(out);
@@ -373,9 +374,10 @@ void write_vtu(const std::string& path, const Model& m, const State& s,
         h += place(a, "      ");
     // body names indexed by body id (the `body` point and cell arrays), inline: VTK writes a
     // String array as the byte values of the names, each followed by 0 (vtkXMLWriter, ASCII)
-    h += fmt::format("      <Array type=\"String\" Name=\"body_name\" NumberOfTuples=\"{}\" "
-                     "format=\"ascii\">\n       ",
-                     m.bodies.size());
+    h += fmt::format(
+        "      <Array type=\"String\" Name=\"body_name\" NumberOfTuples=\"{}\" "
+        "format=\"ascii\">\n       ",
+        m.bodies.size());
     for (const Body& b : m.bodies) {
         for (const char c : b.name)
             h += fmt::format(" {}", static_cast<unsigned>(static_cast<unsigned char>(c)));

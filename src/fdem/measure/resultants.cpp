@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "fdem/build.hpp"
 #include "fdem/measure.hpp"
 
 namespace fdem {
@@ -11,23 +12,23 @@ namespace {
 
 // Nodes that can receive a contact force (a superset: summing f_contact over them in ascending
 // order gives the same bits as summing over every node of the body, zeros add nothing).
-std::vector<uint8_t> contact_force_nodes(const Model& m) {
+std::vector<uint8_t> contact_force_nodes(const Model& m, const ContactTopology& ct) {
     const ContactModel& cm = m.contact;
     std::vector<uint8_t> flag(static_cast<size_t>(m.num_nodes()), 0);
     if (cm.algorithm == ContactAlgorithm::None) return flag;
-    for (NodeId j : cm.boundary_nodes)  // targets
+    for (NodeId j : ct.boundary_nodes)  // targets
         flag[static_cast<size_t>(j)] = 1;
-    for (const auto& t : cm.sub_tri) {  // contactor vertices, virtual ones via their parents
+    for (const auto& t : ct.sub_tri) {  // contactor vertices, virtual ones via their parents
         for (NodeId i : t) {
-            if (i < cm.num_real_nodes) {
+            if (i < ct.num_real_nodes) {
                 flag[static_cast<size_t>(i)] = 1;
             } else {
-                for (NodeId p : cm.virt_parent[static_cast<size_t>(i - cm.num_real_nodes)])
+                for (NodeId p : ct.virt_parent[static_cast<size_t>(i - ct.num_real_nodes)])
                     flag[static_cast<size_t>(p)] = 1;
             }
         }
     }
-    for (TriId t : cm.boundary_tris) {  // baseline A couples
+    for (TriId t : ct.boundary_tris) {  // baseline A couples
         for (NodeId i : m.tri_nodes[static_cast<size_t>(t)])
             flag[static_cast<size_t>(i)] = 1;
     }
@@ -36,8 +37,8 @@ std::vector<uint8_t> contact_force_nodes(const Model& m) {
 
 // Nodes where a contact force or an external load ([[load]]) can act: a fixed body's reaction
 // (eq. 8.2) sums f over them.
-std::vector<uint8_t> force_nodes(const Model& m) {
-    std::vector<uint8_t> flag = contact_force_nodes(m);
+std::vector<uint8_t> force_nodes(const Model& m, const ContactTopology& ct) {
+    std::vector<uint8_t> flag = contact_force_nodes(m, ct);
     for (const Load& ld : m.loads) {
         for (NodeId i : ld.nodes)
             flag[static_cast<size_t>(i)] = 1;
@@ -51,9 +52,11 @@ std::vector<uint8_t> force_nodes(const Model& m) {
 
 }  // namespace
 
-Resultants::Resultants(const Model& m) {
-    const std::vector<uint8_t> carries = contact_force_nodes(m);
-    const std::vector<uint8_t> loaded = force_nodes(m);
+Resultants::Resultants(const Model& m) : Resultants(m, build_topology(m)) {}
+
+Resultants::Resultants(const Model& m, const ContactTopology& ct) {
+    const std::vector<uint8_t> carries = contact_force_nodes(m, ct);
+    const std::vector<uint8_t> loaded = force_nodes(m, ct);
     const int32_t n_entries = static_cast<int32_t>(m.group_names.size());
     num_entries_ = n_entries;
     sets_.resize(static_cast<size_t>(n_entries));

@@ -9,9 +9,7 @@
 #include <fmt/format.h>
 
 #include "contact/contact.hpp"
-#include "contact/validate.hpp"
 #include "element/cst.hpp"
-#include "fdem/assert.hpp"
 #include "fdem/build.hpp"
 #include "fdem/error.hpp"
 #include "model/renumber.hpp"
@@ -349,11 +347,7 @@ void finalize_model(Model& m, std::vector<int32_t>& node_new) {
         slot += ld.num_slots();
     }
 
-    build_contact_topology(m);
-    if constexpr (kAssertsEnabled) {
-        const std::vector<std::string> bad = validate_topology(m, 1);
-        FDEM_ASSERT(bad.empty(), bad.front().c_str());
-    }
+    resolve_contact_params(m);
     m.element_schedule = build_element_schedule(m);
 }
 
@@ -373,9 +367,13 @@ Real element_stable_time_step(const Model& m, TriId* limiting_tri) {
 }
 
 Real stable_time_step(const Model& m, TriId* limiting_tri) {
+    return stable_time_step(m, build_topology(m), limiting_tri);
+}
+
+Real stable_time_step(const Model& m, const ContactTopology& t, TriId* limiting_tri) {
     TriId arg = kNone;
     const Real dte = element_stable_time_step(m, &arg);
-    const Real dtc = contact_stable_dt(m);
+    const Real dtc = contact_stable_dt(m, t);
     if (dtc < dte) arg = kNone;
     if (limiting_tri) *limiting_tri = arg;
     if (!std::isfinite(dte) || !std::isfinite(dtc)) return std::min(dte, dtc);

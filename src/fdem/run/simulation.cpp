@@ -75,7 +75,7 @@ struct Simulation::Impl {
         // bodies.csv: resultants, reactions and mean motion per body entry and boundary group
         const int64_t resume = restarted ? state.step : -1;
         if (run.output.bodies) {
-            resultants = std::make_unique<Resultants>(model);
+            resultants = std::make_unique<Resultants>(model, state.topology);
             bodies =
                 std::make_unique<BodiesWriter>((out / "bodies.csv").string(), *resultants, resume);
             if (prog.impulses.contact.size() != static_cast<size_t>(resultants->num_sets())) {

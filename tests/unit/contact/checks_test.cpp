@@ -11,6 +11,14 @@
 namespace fdem {
 namespace {
 
+// the load-time checks on the topology of m as loaded (the scenario reader's call)
+InitialOverlap overlap_of(const Model& m) {
+    return find_initial_overlap(m, build_topology(m));
+}
+std::vector<ThinLayer> thin_layers_of(const Model& m) {
+    return find_thin_layers(m, build_topology(m));
+}
+
 using testing::ModelBuilder;
 
 // A = [0, 1] x [0, 1] and B = [1 + gap, 2 + gap] x [0, 1], 4 x 4 cells each: the faces meet
@@ -26,7 +34,7 @@ TEST(InitialOverlap, ToleranceIsAMillionthOfTheSmallestAltitude) {
     const Model m = two_squares(0.1);
     const Real h_min = 0.25 / std::sqrt(2.0);  // right triangles of 0.25 x 0.25 cells
     EXPECT_NEAR(m.contact.h_min, h_min, 1e-15);
-    const InitialOverlap o = find_initial_overlap(m);
+    const InitialOverlap o = overlap_of(m);
     EXPECT_FALSE(o.found);
     EXPECT_NEAR(o.tolerance, 1e-6 * h_min, 1e-20);
 }
@@ -35,10 +43,10 @@ TEST(InitialOverlap, ToleranceIsAMillionthOfTheSmallestAltitude) {
 // twice of it is an overlap (the nodes inside the other face, not the corners on its edge lines)
 TEST(InitialOverlap, TouchingIsAcceptedBothSidesOfTheTolerance) {
     const Real tol = 1e-6 * 0.25 / std::sqrt(2.0);
-    EXPECT_FALSE(find_initial_overlap(two_squares(0.0)).found);
-    EXPECT_FALSE(find_initial_overlap(two_squares(-0.5 * tol)).found);
+    EXPECT_FALSE(overlap_of(two_squares(0.0)).found);
+    EXPECT_FALSE(overlap_of(two_squares(-0.5 * tol)).found);
     const Model m = two_squares(-2 * tol);
-    const InitialOverlap o = find_initial_overlap(m);
+    const InitialOverlap o = overlap_of(m);
     ASSERT_TRUE(o.found);
     EXPECT_NEAR(o.depth, 2 * tol, 1e-3 * tol);
     // the first point at the deepest depth, in (body pair, body, point) order: a boundary node
@@ -58,7 +66,7 @@ TEST(InitialOverlap, CoincidentMeshesAreFoundByCentroids) {
     b.add_body(make_rectangle_mesh(0, 0, 1, 1, 4, 4));
     b.add_body(make_rectangle_mesh(0, 0, 1, 1, 4, 4));
     const Model& m = b.finalize();
-    const InitialOverlap o = find_initial_overlap(m);
+    const InitialOverlap o = overlap_of(m);
     ASSERT_TRUE(o.found);
     EXPECT_EQ(o.point, InitialOverlap::Point::Centroid);
     EXPECT_EQ(o.body, 0);
@@ -72,7 +80,7 @@ TEST(InitialOverlap, BodyInsideAnotherIsFound) {
     b.add_body(make_rectangle_mesh(0, 0, 10, 10, 10, 10));
     b.add_body(make_rectangle_mesh(4.2, 4.2, 1, 1, 2, 2));
     const Model& m = b.finalize();
-    const InitialOverlap o = find_initial_overlap(m);
+    const InitialOverlap o = overlap_of(m);
     ASSERT_TRUE(o.found);
     EXPECT_EQ(o.body, 1);
     EXPECT_EQ(o.other, 0);
@@ -81,8 +89,8 @@ TEST(InitialOverlap, BodyInsideAnotherIsFound) {
 
 // two fixed bodies never interact: their overlap is not reported
 TEST(InitialOverlap, TwoFixedBodiesAreNotCompared) {
-    EXPECT_FALSE(find_initial_overlap(two_squares(-0.3, 0, true, true)).found);
-    EXPECT_TRUE(find_initial_overlap(two_squares(-0.3, 0, true, false)).found);
+    EXPECT_FALSE(overlap_of(two_squares(-0.3, 0, true, true)).found);
+    EXPECT_TRUE(overlap_of(two_squares(-0.3, 0, true, false)).found);
 }
 
 // A slab two elements thick with perturbed middle nodes: in a top-layer element a middle node
@@ -93,19 +101,21 @@ TEST(ThinLayer, TwoElementSlabIsReported) {
     ModelBuilder b;
     b.add_body(mesh);
     const Model& m = b.finalize();
-    const std::vector<ThinLayer> t = find_thin_layers(m);
+    const std::vector<ThinLayer> t = thin_layers_of(m);
     ASSERT_EQ(t.size(), 1u);
     EXPECT_EQ(t[0].body, 0);
     EXPECT_GT(t[0].count, 0);
     EXPECT_LT(t[0].dist, kThinLayerRatio * t[0].near_dist);
     // the far face: its outward normal is opposite to the face the element lies on
-    EXPECT_EQ(thin_layer_warning(m, t[0]).rfind("warning: body 0 \"b0\" is too thin for its "
-                                                "contact layer: in ",
-                                                0),
+    EXPECT_EQ(thin_layer_warning(m, build_topology(m), t[0])
+                  .rfind("warning: body 0 \"b0\" is too thin for its "
+                         "contact layer: in ",
+                         0),
               0u);
-    EXPECT_NE(thin_layer_warning(m, t[0]).find("Remedy: make the body thicker (at least three "
-                                               "elements through its thickness) or refine the "
-                                               "mesh there"),
+    EXPECT_NE(thin_layer_warning(m, build_topology(m), t[0])
+                  .find("Remedy: make the body thicker (at least three "
+                        "elements through its thickness) or refine the "
+                        "mesh there"),
               std::string::npos);
 }
 
@@ -115,21 +125,21 @@ TEST(ThinLayer, ThickOrSymmetricBodiesAreNotReported) {
     {
         ModelBuilder b;
         b.add_body(make_rectangle_mesh(0, 0, 2, 0.2, 20, 2));
-        EXPECT_TRUE(find_thin_layers(b.finalize()).empty());
+        EXPECT_TRUE(thin_layers_of(b.finalize()).empty());
     }
     {
         MeshData mesh = make_rectangle_mesh(0, 0, 2, 0.4, 20, 4);
         testing::perturb_interior(mesh, 0.03, 7);
         ModelBuilder b;
         b.add_body(mesh);
-        EXPECT_TRUE(find_thin_layers(b.finalize()).empty());
+        EXPECT_TRUE(thin_layers_of(b.finalize()).empty());
     }
     {
         MeshData mesh = make_rectangle_mesh(0, 0, 1, 1, 6, 6);
         testing::perturb_interior(mesh, 0.03, 3);
         ModelBuilder b;
         b.add_body(mesh);
-        EXPECT_TRUE(find_thin_layers(b.finalize()).empty());
+        EXPECT_TRUE(thin_layers_of(b.finalize()).empty());
     }
 }
 

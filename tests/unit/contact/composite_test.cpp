@@ -40,8 +40,10 @@ struct CompositeScene {
     }
     Model& finalize() {
         finalize_model(m);
+        topo = build_topology(m);
         return m;
     }
+    ContactTopology topo;  ///< built by finalize()
 };
 
 // 3-4-5 triangle: inradius 1, incenter (1, 1) (scalene: a centroid fan would not be exact)
@@ -62,7 +64,8 @@ struct Counts {
     size_t bedges, bnodes, btris, chords, virt, subs;
 };
 Counts counts(const Model& m) {
-    const ContactModel& c = m.contact;
+    const ContactTopology topo = build_topology(m);
+    const ContactTopology& c = topo;
     return {c.boundary_edges.size(),
             c.boundary_nodes.size(),
             c.boundary_tris.size(),
@@ -72,9 +75,11 @@ Counts counts(const Model& m) {
 }
 
 Real sub_area(const Model& m, int32_t s) {
-    const auto& q = m.contact.sub_tri[s];
-    return signed_area(testing::contact_node_x0(m, q[0]), testing::contact_node_x0(m, q[1]),
-                       testing::contact_node_x0(m, q[2]));
+    const ContactTopology topo = build_topology(m);
+    const auto& q = topo.sub_tri[s];
+    return signed_area(testing::contact_node_x0(m, topo, q[0]),
+                       testing::contact_node_x0(m, topo, q[1]),
+                       testing::contact_node_x0(m, topo, q[2]));
 }
 
 // every contact sub-triangle counter-clockwise; together with the mesh triangles that are not
@@ -82,7 +87,8 @@ Real sub_area(const Model& m, int32_t s) {
 // boundary half-edge of the body or is used in the opposite direction by exactly one other
 // sub-triangle or by a mesh triangle that is not a contactor
 void expect_conforming_tiling(const Model& m, Real body_area) {
-    const ContactModel& cm = m.contact;
+    const ContactTopology topo = build_topology(m);
+    const ContactTopology& cm = topo;
     std::map<std::pair<NodeId, NodeId>, int> inner;  // directed edges of non-contactor triangles
     for (TriId t = 0; t < m.num_tris(); ++t) {
         if (std::count(cm.boundary_tris.begin(), cm.boundary_tris.end(), t) > 0) continue;
@@ -132,6 +138,7 @@ struct FieldError {
 // points in no contactor sub-triangle are skipped if skip_outside, else a failure
 FieldError field_error(const Model& m, const std::vector<Vec2>& poly, int n, unsigned seed,
                        bool skip_outside = false) {
+    const ContactTopology topo = build_topology(m);
     Vec2 lo = poly[0], hi = lo;
     for (const Vec2& p : poly) {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
@@ -144,7 +151,7 @@ FieldError field_error(const Model& m, const std::vector<Vec2>& poly, int n, uns
         const Vec2 x{ux(rng), uy(rng)};
         if (!inside_convex(poly, x)) continue;
         FieldSample fs;
-        const bool found = testing::field_at(m, 0, x, fs);
+        const bool found = testing::field_at(m, topo, 0, x, fs);
         if (!found && skip_outside) continue;
         EXPECT_TRUE(found) << x.x << ", " << x.y;
         const Real exact = testing::polygon_distance(poly, x);
@@ -164,20 +171,21 @@ TEST(CompositeContact, SingleElementCounts) {
         CompositeScene sc(o);
         sc.add(single());
         const Model& m = sc.finalize();
+        const ContactTopology& topo = sc.topo;
         const Counts c = counts(m);
         EXPECT_EQ(c.bedges, 6u) << name_of(o);
         EXPECT_EQ(c.bnodes, 6u);
         EXPECT_EQ(c.btris, 4u);
         EXPECT_EQ(c.chords, 3u);  // the central sub-triangle's edges n2-n4, n4-n6, n6-n2
-        EXPECT_EQ(m.contact.num_fallback_nodes, 0);
+        EXPECT_EQ(topo.num_fallback_nodes, 0);
         if (o == Option::Fan) {
             EXPECT_EQ(c.virt, 1u);  // n7 (Fig. 10b)
             EXPECT_EQ(c.subs, 6u);  // one per boundary half-edge
             // n7 at the incenter (1, 1) of the corner triangle, d = inradius = 1 (eq. 1)
-            const NodeId n7 = m.contact.num_real_nodes;
-            EXPECT_NEAR(testing::contact_node_x0(m, n7).x, 1.0, 1e-15);
-            EXPECT_NEAR(testing::contact_node_x0(m, n7).y, 1.0, 1e-15);
-            EXPECT_NEAR(m.contact.node_dist[n7], 1.0, 1e-15);
+            const NodeId n7 = topo.num_real_nodes;
+            EXPECT_NEAR(testing::contact_node_x0(m, topo, n7).x, 1.0, 1e-15);
+            EXPECT_NEAR(testing::contact_node_x0(m, topo, n7).y, 1.0, 1e-15);
+            EXPECT_NEAR(topo.node_dist[n7], 1.0, 1e-15);
         } else {
             EXPECT_EQ(c.virt, 3u);   // n7, n8, n9 (Fig. 10a)
             EXPECT_EQ(c.subs, 10u);  // ten sub-elements
@@ -192,6 +200,7 @@ TEST(CompositeContact, DiamondCounts) {
         CompositeScene sc(o);
         sc.add(diamond());
         const Model& m = sc.finalize();
+        const ContactTopology& topo = sc.topo;
         const Counts c = counts(m);
         EXPECT_EQ(m.num_nodes(), 9) << name_of(o);
         EXPECT_EQ(c.bedges, 8u);
@@ -208,8 +217,8 @@ TEST(CompositeContact, DiamondCounts) {
         // n4 = the rhombus centre (origin), eq. 1 over the half-edges: the inradius
         for (NodeId i = 0; i < m.num_nodes(); ++i) {
             if (norm(m.node_x0[i]) == 0) {
-                EXPECT_FALSE(m.contact.node_on_boundary[i]);
-                EXPECT_NEAR(m.contact.node_dist[i], 0.6 / std::sqrt(1.36), 1e-15);
+                EXPECT_FALSE(topo.node_on_boundary[i]);
+                EXPECT_NEAR(topo.node_dist[i], 0.6 / std::sqrt(1.36), 1e-15);
             }
         }
         expect_conforming_tiling(m, 1.2);
@@ -227,6 +236,7 @@ TEST(CompositeContact, RectangleMixesSpecialAndPlainElements) {
         CompositeScene sc(o);
         sc.add(scenes::composite_mesh(corners, tris));
         const Model& m = sc.finalize();
+        const ContactTopology& topo = sc.topo;
         const Counts c = counts(m);
         EXPECT_EQ(c.bedges, 16u) << name_of(o);  // 8 element edges, 2 halves each
         EXPECT_EQ(c.chords, 2u);                 // elements (1,2,5) and (3,7,6)
@@ -238,10 +248,10 @@ TEST(CompositeContact, RectangleMixesSpecialAndPlainElements) {
         EXPECT_EQ(c.subs, o == Option::Fan ? 24u : 36u);
         EXPECT_EQ(c.virt, o == Option::Fan ? 0u : 6u);
         expect_conforming_tiling(m, 2.0);
-        for (const auto& q : m.contact.sub_tri) {  // every inner node of a contactor: d > 0
+        for (const auto& q : topo.sub_tri) {  // every inner node of a contactor: d > 0
             for (NodeId i : q) {
-                if (i >= m.num_nodes() || !m.contact.node_on_boundary[i]) {
-                    EXPECT_GT(m.contact.node_dist[i], 0) << i;
+                if (i >= m.num_nodes() || !topo.node_on_boundary[i]) {
+                    EXPECT_GT(topo.node_dist[i], 0) << i;
                 }
             }
         }
@@ -315,6 +325,7 @@ TEST(CompositeContact, GmshEllipseMesh) {
         opt.name = "ellipse";
         add_bodies(sc.m, g, testing::all_tris(g), opt);
         const Model& m = sc.finalize();
+        const ContactTopology& topo = sc.topo;
         ASSERT_EQ(m.num_bodies(), 1);
         Real area = 0;
         for (TriId t = 0; t < m.num_tris(); ++t)
@@ -322,21 +333,21 @@ TEST(CompositeContact, GmshEllipseMesh) {
         expect_conforming_tiling(m, area);
         // the boundary polygon, in order (boundary edges are oriented, material on the left)
         std::map<NodeId, NodeId> next;
-        for (const auto& e : m.contact.boundary_edges)
+        for (const auto& e : topo.boundary_edges)
             next[e[0]] = e[1];
         std::vector<Vec2> poly;
-        NodeId i = m.contact.boundary_edges[0][0];
+        NodeId i = topo.boundary_edges[0][0];
         do {
             poly.push_back(m.node_x0[i]);
             i = next[i];
-        } while (i != m.contact.boundary_edges[0][0] && poly.size() <= next.size());
+        } while (i != topo.boundary_edges[0][0] && poly.size() <= next.size());
         ASSERT_EQ(poly.size(), next.size());
         const FieldError e = field_error(m, poly, 4000, 9, true);
         std::printf(
             "[ info ] gmsh ellipse (order 2, h = 0.6), %s: %d composites, %d special "
             "chords, max |d - exact| = %.3g m, min d/exact = %.3f, %d fallback nodes\n",
-            name_of(o), m.num_tris() / 4, static_cast<int>(m.contact.chords.size()), e.max_abs,
-            e.min_ratio, m.contact.num_fallback_nodes);
+            name_of(o), m.num_tris() / 4, static_cast<int>(topo.chords.size()), e.max_abs,
+            e.min_ratio, topo.num_fallback_nodes);
         EXPECT_GT(e.samples, 1000);
         EXPECT_GT(e.min_ratio, 0.2);  // no false zero valley
     }
@@ -382,12 +393,13 @@ TEST(CompositeContact, SplitFieldErrorIsReported) {
         CompositeScene sc(Option::Split);
         sc.add(k.mesh);
         const Model& m = sc.finalize();
+        const ContactTopology& topo = sc.topo;
         const FieldError e = field_error(m, k.poly, 20000, 3);
         std::printf(
             "[ info ] %s, split: max |d - exact| = %.4g m = %.4f x inradius, "
             "min d/exact = %.4f, max d - exact = %.2g m, fallback nodes %d\n",
             k.name, e.max_abs, e.max_abs / k.inradius, e.min_ratio, e.max_over,
-            m.contact.num_fallback_nodes);
+            topo.num_fallback_nodes);
         EXPECT_GT(e.min_ratio, 0.2);
         EXPECT_LE(e.max_over, 1e-15);  // round-off of an interpolation of O(1) values
     }
@@ -401,7 +413,8 @@ TEST(CompositeContact, FieldContinuousAcrossEdges) {
             CompositeScene sc(o);
             sc.add(shape == 0 ? single() : diamond());
             const Model& m = sc.finalize();
-            const ContactModel& cm = m.contact;
+            const ContactTopology& topo = sc.topo;
+            const ContactTopology& cm = topo;
             int edges = 0;
             Real worst = 0;
             for (int32_t s = 0; s < cm.num_sub_tris(); ++s) {
@@ -410,14 +423,14 @@ TEST(CompositeContact, FieldContinuousAcrossEdges) {
                     const auto& qs = cm.sub_tri[s];
                     const auto& qr = cm.sub_tri[r];
                     for (int k = 0; k < 3; ++k) {
-                        const Vec2 a = testing::contact_node_x0(m, qs[k]);
-                        const Vec2 b = testing::contact_node_x0(m, qs[(k + 1) % 3]);
+                        const Vec2 a = testing::contact_node_x0(m, topo, qs[k]);
+                        const Vec2 b = testing::contact_node_x0(m, topo, qs[(k + 1) % 3]);
                         // r has a geometric edge b-a (checked by position, not by id)
                         bool shared = false;
                         for (int j = 0; j < 3; ++j) {
-                            shared |=
-                                norm(testing::contact_node_x0(m, qr[j]) - b) < 1e-14 &&
-                                norm(testing::contact_node_x0(m, qr[(j + 1) % 3]) - a) < 1e-14;
+                            shared |= norm(testing::contact_node_x0(m, topo, qr[j]) - b) < 1e-14 &&
+                                      norm(testing::contact_node_x0(m, topo, qr[(j + 1) % 3]) - a) <
+                                          1e-14;
                         }
                         if (!shared) continue;
                         ++edges;
@@ -426,9 +439,9 @@ TEST(CompositeContact, FieldContinuousAcrossEdges) {
                             Real d[2];
                             for (int side = 0; side < 2; ++side) {
                                 const auto& q = side == 0 ? qs : qr;
-                                const Vec2 p[3] = {testing::contact_node_x0(m, q[0]),
-                                                   testing::contact_node_x0(m, q[1]),
-                                                   testing::contact_node_x0(m, q[2])};
+                                const Vec2 p[3] = {testing::contact_node_x0(m, topo, q[0]),
+                                                   testing::contact_node_x0(m, topo, q[1]),
+                                                   testing::contact_node_x0(m, topo, q[2])};
                                 FieldSample fs;
                                 ASSERT_TRUE(barycentric(p[0], p[1], p[2], x, fs.N));
                                 const Real dist[3] = {cm.node_dist[q[0]], cm.node_dist[q[1]],
@@ -518,15 +531,16 @@ TEST(CompositeContact, LegacyBoundaryUsesNestedSplit) {
         CompositeScene sc(o, ContactAlgorithm::LegacyBoundary);
         sc.add(single());
         const Model& m = sc.finalize();
-        EXPECT_EQ(m.contact.num_sub_tris(), 10);
-        ASSERT_EQ(m.contact.sub_legacy_b.size(), 10u);
+        const ContactTopology& topo = sc.topo;
+        EXPECT_EQ(topo.num_sub_tris(), 10);
+        ASSERT_EQ(topo.sub_legacy_b.size(), 10u);
         // every contact sub-triangle lies inside its mesh parent
-        for (int32_t s = 0; s < m.contact.num_sub_tris(); ++s) {
-            const auto& t = m.tri_nodes[m.contact.sub_parent[s]];
-            for (NodeId i : m.contact.sub_tri[s]) {
+        for (int32_t s = 0; s < topo.num_sub_tris(); ++s) {
+            const auto& t = m.tri_nodes[topo.sub_parent[s]];
+            for (NodeId i : topo.sub_tri[s]) {
                 Real N[3];
                 ASSERT_TRUE(barycentric(m.node_x0[t[0]], m.node_x0[t[1]], m.node_x0[t[2]],
-                                        testing::contact_node_x0(m, i), N));
+                                        testing::contact_node_x0(m, topo, i), N));
                 EXPECT_GE(std::min({N[0], N[1], N[2]}), -1e-15);
             }
         }
@@ -539,14 +553,15 @@ TEST(CompositeContact, FanParentHoldsTheBoundaryHalfEdge) {
     CompositeScene sc(Option::Fan);
     sc.add(single());
     const Model& m = sc.finalize();
-    for (int32_t s = 0; s < m.contact.num_sub_tris(); ++s) {
-        const auto& q = m.contact.sub_tri[s];
-        const auto& t = m.tri_nodes[m.contact.sub_parent[s]];
+    const ContactTopology& topo = sc.topo;
+    for (int32_t s = 0; s < topo.num_sub_tris(); ++s) {
+        const auto& q = topo.sub_tri[s];
+        const auto& t = m.tri_nodes[topo.sub_parent[s]];
         bool found = false;  // (q0, q1) is an edge of the parent, same direction
         for (int k = 0; k < 3; ++k)
             found |= q[0] == t[k] && q[1] == t[(k + 1) % 3];
         EXPECT_TRUE(found) << s;
-        EXPECT_TRUE(m.contact.node_on_boundary[q[0]] && m.contact.node_on_boundary[q[1]]);
+        EXPECT_TRUE(topo.node_on_boundary[q[0]] && topo.node_on_boundary[q[1]]);
     }
 }
 

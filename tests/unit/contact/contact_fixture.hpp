@@ -78,8 +78,10 @@ struct ModelBuilder {
     }
     Model& finalize() {
         finalize_model(m);
+        topo = build_topology(m);
         return m;
     }
+    ContactTopology topo;  ///< contact topology of m, built by finalize()
 };
 
 /// Rigidly rotate (by angle a about c) and translate (by t) a mesh.
@@ -93,8 +95,7 @@ inline MeshData moved(MeshData mesh, Real a, Vec2 c, Vec2 t) {
 }
 
 /// Reference position of contact node i (real or virtual).
-inline Vec2 contact_node_x0(const Model& m, NodeId i) {
-    const ContactModel& cm = m.contact;
+inline Vec2 contact_node_x0(const Model& m, const ContactTopology& cm, NodeId i) {
     if (i < cm.num_real_nodes) return m.node_x0[i];
     const auto v = static_cast<size_t>(i - cm.num_real_nodes);
     Vec2 x;
@@ -105,14 +106,14 @@ inline Vec2 contact_node_x0(const Model& m, NodeId i) {
 
 /// Field of body b at point x in the reference configuration: scans all contactor
 /// sub-triangles of b and uses the one with the largest min N_i. Returns false if x is in none.
-inline bool field_at(const Model& m, BodyId b, Vec2 x, FieldSample& out, int32_t* tri = nullptr) {
-    const ContactModel& cm = m.contact;
+inline bool field_at(const Model& m, const ContactTopology& cm, BodyId b, Vec2 x, FieldSample& out,
+                     int32_t* tri = nullptr) {
     Real best = -1e-12;
     bool found = false;
     for (int32_t t = cm.body_sub_begin[b]; t < cm.body_sub_begin[b + 1]; ++t) {
         const auto& q = cm.sub_tri[t];
-        const Vec2 p[3] = {contact_node_x0(m, q[0]), contact_node_x0(m, q[1]),
-                           contact_node_x0(m, q[2])};
+        const Vec2 p[3] = {contact_node_x0(m, cm, q[0]), contact_node_x0(m, cm, q[1]),
+                           contact_node_x0(m, cm, q[2])};
         FieldSample fs;
         if (!barycentric(p[0], p[1], p[2], x, fs.N)) continue;
         const Real mn = std::min({fs.N[0], fs.N[1], fs.N[2]});

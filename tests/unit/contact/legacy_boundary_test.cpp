@@ -46,7 +46,8 @@ Model model_of(MeshData mesh) {
 
 // position of a contact node (real or virtual) in the reference configuration
 Vec2 contact_pos(const Model& m, NodeId i) {
-    const ContactModel& cm = m.contact;
+    const ContactTopology topo = build_topology(m);
+    const ContactTopology& cm = topo;
     if (i < cm.num_real_nodes) return m.node_x0[i];
     const size_t v = static_cast<size_t>(i - cm.num_real_nodes);
     Vec2 x;
@@ -73,6 +74,7 @@ struct Direct {
 };
 
 Direct direct_phi(const Model& m, TriId t, Vec2 x, const EdgePred& same_face) {
+    const ContactTopology topo = build_topology(m);
     const auto& n = m.tri_nodes[t];
     const Vec2 p[3] = {m.node_x0[n[0]], m.node_x0[n[1]], m.node_x0[n[2]]};
     Real N[3];
@@ -94,7 +96,8 @@ Direct direct_phi(const Model& m, TriId t, Vec2 x, const EdgePred& same_face) {
 
 void check_against_direct(const Model& m, const LegacyBoundaryField& lb, Real h_ref,
                           const EdgePred& bnd, int* counts) {
-    const ContactModel& cm = m.contact;
+    const ContactTopology topo = build_topology(m);
+    const ContactTopology& cm = topo;
     ASSERT_EQ(lb.sub.size(), static_cast<size_t>(cm.num_sub_tris()));
     Lcg rng(3);
     for (int32_t s = 0; s < cm.num_sub_tris(); ++s) {
@@ -133,7 +136,7 @@ void check_against_direct(const Model& m, const LegacyBoundaryField& lb, Real h_
 // (0, 0)
 TEST(LegacyBoundaryField, StructuredRectangleMatchesDirectFormula) {
     const Model m = model_of(make_rectangle_mesh(0, 0, 2, 1, 4, 2, false));
-    const LegacyBoundaryField lb = build_legacy_boundary_field(m);
+    const LegacyBoundaryField lb = build_legacy_boundary_field(m, build_topology(m));
     ASSERT_EQ(lb.body_h_ref.size(), 1u);
     EXPECT_NEAR(lb.body_h_ref[0], 0.5, 1e-15);  // exact heights, one rounding
     int counts[4] = {0, 0, 0, 0};
@@ -147,8 +150,9 @@ TEST(LegacyBoundaryField, StructuredRectangleMatchesDirectFormula) {
 // triangle height equals H_ref, and grad d_B is the inward unit normal.
 TEST(LegacyBoundaryField, DepthBelowAFlatFaceOfARegularMesh) {
     const Model m = model_of(make_rectangle_mesh(0, 0, 2, 1, 4, 2, true));
-    const LegacyBoundaryField lb = build_legacy_boundary_field(m);
-    const ContactModel& cm = m.contact;
+    const ContactTopology topo = build_topology(m);
+    const LegacyBoundaryField lb = build_legacy_boundary_field(m, build_topology(m));
+    const ContactTopology& cm = topo;
     int checked = 0;
     for (int32_t s = 0; s < cm.num_sub_tris(); ++s) {
         if (lb.sub[s].terms != 1) continue;
@@ -187,7 +191,7 @@ TEST(LegacyBoundaryField, PerturbedMeshMeanHeightAndField) {
         p.y += rng(-0.03, 0.03);
     }
     const Model m = model_of(mesh);
-    const LegacyBoundaryField lb = build_legacy_boundary_field(m);
+    const LegacyBoundaryField lb = build_legacy_boundary_field(m, build_topology(m));
 
     Real sum = 0;
     int count = 0;
@@ -217,8 +221,9 @@ TEST(LegacyBoundaryField, SingleTriangleBody) {
     mesh.tris = {{0, 1, 2}};
     mesh.tri_tag = {1};
     const Model m = model_of(mesh);
-    const LegacyBoundaryField lb = build_legacy_boundary_field(m);
-    ASSERT_EQ(m.contact.num_sub_tris(), 3);
+    const ContactTopology topo = build_topology(m);
+    const LegacyBoundaryField lb = build_legacy_boundary_field(m, topo);
+    ASSERT_EQ(topo.num_sub_tris(), 3);
     const Real a2 = 2.0 * m.tri_area0[0];
     const Real href =
         (a2 / norm(mesh.nodes[1] - mesh.nodes[0]) + a2 / norm(mesh.nodes[2] - mesh.nodes[1]) +

@@ -71,7 +71,8 @@ Model perturbed_contactor() {
 }
 
 Vec2 contact_pos(const Model& m, NodeId i) {
-    const ContactModel& cm = m.contact;
+    const ContactTopology topo = build_topology(m);
+    const ContactTopology& cm = topo;
     if (i < cm.num_real_nodes) return m.node_x0[i];
     const size_t v = static_cast<size_t>(i - cm.num_real_nodes);
     Vec2 x;
@@ -136,11 +137,12 @@ void report(const char* name, const Metrics& m) {
 
 TEST(LegacySmoothness, SlidingPointT5) {
     const Model m = perturbed_contactor();
-    const ContactModel& cm = m.contact;
+    const ContactTopology topo = build_topology(m);
+    const ContactTopology& cm = topo;
     for (TriId t = 0; t < m.num_tris(); ++t) {
         ASSERT_GT(m.tri_area0[t], 0.05 * kH * kH) << "perturbation folded triangle " << t;
     }
-    const LegacyBoundaryField lb = build_legacy_boundary_field(m);
+    const LegacyBoundaryField lb = build_legacy_boundary_field(m, build_topology(m));
     const Vec2 n_exact{0, -1};  // grad of the depth below the top face: into the contactor
     const Real depth = 0.1 * kH;
     const Real y = 3 * kH - depth;

@@ -414,10 +414,11 @@ Model three_blocks() {
 
 TEST(LegacyCouples, GridMatchesBruteForce) {
     const Model m = three_blocks();
-    ASSERT_GT(m.contact.boundary_tris.size(), 10u);
+    const ContactTopology topo = build_topology(m);
+    ASSERT_GT(topo.boundary_tris.size(), 10u);
     LegacyTriangleState a, b;
-    find_legacy_couples(m, m.node_x0.data(), a);
-    find_legacy_couples_brute_force(m, m.node_x0.data(), b);
+    find_legacy_couples(m, topo, m.node_x0.data(), a);
+    find_legacy_couples_brute_force(m, topo, m.node_x0.data(), b);
     ASSERT_EQ(a.couples.size(), b.couples.size());
     ASSERT_GT(a.couples.size(), 0u);
     for (size_t k = 0; k < a.couples.size(); ++k) {
@@ -430,6 +431,7 @@ TEST(LegacyCouples, GridMatchesBruteForce) {
 TEST(LegacyCouples, StepForcesBalanceAndPushBlocksApart) {
     const Model m = three_blocks();
     State s;
+    s.topology = build_topology(m);
     s.x = m.node_x0;
     s.v.assign(m.node_x0.size(), Vec2{});
     s.f.assign(m.node_x0.size(), Vec2{});

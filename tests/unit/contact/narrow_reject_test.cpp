@@ -40,8 +40,8 @@ bool early_rejected(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 x) {
 }
 
 // one body of n triangles over real nodes 0..3n-1 (no shared nodes needed for the test)
-ContactModel one_body(int n) {
-    ContactModel cm;
+ContactTopology one_body(int n) {
+    ContactTopology cm;
     cm.num_real_nodes = 3 * n;
     for (int t = 0; t < n; ++t) {
         cm.sub_tri.push_back({3 * t, 3 * t + 1, 3 * t + 2});
@@ -57,7 +57,7 @@ struct Counts {
 };
 
 // every point the box rejects must be rejected by every sub-triangle
-void check_points(const ContactModel& cm, const std::vector<Vec2>& x, const BodyBox& box,
+void check_points(const ContactTopology& cm, const std::vector<Vec2>& x, const BodyBox& box,
                   const std::vector<Vec2>& pts, Counts& n) {
     for (const Vec2& p : pts) {
         ++n.points;
@@ -81,7 +81,7 @@ TEST(NarrowReject, RandomBodiesAndPoints) {
     int finite_boxes = 0, infinite_boxes = 0;
     for (int trial = 0; trial < 3000; ++trial) {
         const int ntri = 1 + static_cast<int>(rng() % 6);
-        const ContactModel cm = one_body(ntri);
+        const ContactTopology cm = one_body(ntri);
         const Real size = std::pow(10.0, -3 + 6 * u01(rng));
         const Vec2 origin{std::pow(10.0, -2 + 5 * u01(rng)) * (u01(rng) - 0.5),
                           std::pow(10.0, -2 + 5 * u01(rng)) * (u01(rng) - 0.5)};
@@ -165,7 +165,7 @@ TEST(NarrowReject, RandomBodiesAndPoints) {
 }
 
 TEST(NarrowReject, GuardsGiveInfiniteBoxes) {
-    const ContactModel cm = one_body(1);
+    const ContactTopology cm = one_body(1);
     const Real inf = std::numeric_limits<Real>::infinity();
     auto box_of = [&](std::vector<Vec2> x) {
         BodyBox b;
@@ -237,7 +237,7 @@ TEST(NarrowReject, CompactBoxesMatchReference) {
     const Real inf = std::numeric_limits<Real>::infinity(), nan = std::nan("");
     int64_t finite = 0, infinite = 0, large = 0;
     for (int trial = 0; trial < 6000; ++trial) {
-        ContactModel cm;
+        ContactTopology cm;
         const bool big = trial % 50 == 0;
         const int nreal = big ? 200 : 3 + static_cast<int>(rng() % 8);
         const int nvirt = static_cast<int>(rng() % 4);
@@ -293,8 +293,8 @@ TEST(NarrowReject, CompactBoxesMatchReferenceInRuns) {
     pa.nx = pa.ny = 5;
     pa.v_max = 20;
     for (const Model& m : {scenes::make_contact_pack(po), scenes::make_particle_box(pa)}) {
-        ASSERT_EQ(m.contact.body_cnode_begin.size(), static_cast<size_t>(m.num_bodies()) + 1);
         State s = make_state(m, 0.5 * stable_time_step(m));
+        ASSERT_EQ(s.topology.body_cnode_begin.size(), static_cast<size_t>(m.num_bodies()) + 1);
         std::vector<BodyBox> a(static_cast<size_t>(m.num_bodies()));
         std::vector<BodyBox> r(a.size());
         int64_t finite = 0;
@@ -302,8 +302,8 @@ TEST(NarrowReject, CompactBoxesMatchReferenceInRuns) {
             step(m, s);
             if (n % 10 != 0) continue;
             update_virtual_nodes(m, s);
-            body_boxes(m.contact, s.x.data(), s.contact.xv.data(), a.data(), m.num_bodies());
-            body_boxes_reference(m.contact, s.x.data(), s.contact.xv.data(), r.data(),
+            body_boxes(s.topology, s.x.data(), s.contact.xv.data(), a.data(), m.num_bodies());
+            body_boxes_reference(s.topology, s.x.data(), s.contact.xv.data(), r.data(),
                                  m.num_bodies());
             ASSERT_EQ(std::memcmp(a.data(), r.data(), a.size() * sizeof(BodyBox)), 0) << n;
             for (const BodyBox& b : r)

@@ -92,12 +92,13 @@ TEST(ContactPairForce, EdgeTargetForceIsMinusGradientOfPotential) {
     b.add_body(make_rectangle_mesh(0, 0, 4, 1, 4, 1), true);
     b.add_body(testing::mesh_of({{1.23, 0.8}, {1.81, 0.79}, {1.5, 1.6}}, {{0, 1, 2}}));
     const Model& m = b.finalize();
+    const ContactTopology& topo = b.topo;
     const State s0 = make_state(m, 1e-6);
     State s = s0;
     add_contact_forces(m, s);
     int edge_pairs = 0;
     for (const ActiveContact& a : s.contact.active)
-        edge_pairs += a.node >= m.contact.edge_target_base ? 1 : 0;
+        edge_pairs += a.node >= topo.edge_target_base ? 1 : 0;
     EXPECT_EQ(edge_pairs, 1);  // the bottom edge's midpoint
     for (NodeId j = m.bodies[1].node_begin; j < m.bodies[1].node_begin + 2; ++j) {
         const Vec2 f = s.f_contact[j];

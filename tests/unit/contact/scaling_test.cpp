@@ -19,14 +19,16 @@ Model two_rectangles(ContactScaling s) {
     scenes::add_rectangle(m, 0.0, 0.0, 2.0, 0.2, 5, 1, 0, true, {}, false, "platform");
     m.contact.algorithm = ContactAlgorithm::Smooth;
     m.contact.scaling = s;
-    m.contact.edge_targets = false;  // the node scales of eqs. 19 / 6.16 themselves (§6.12: a third)
+    m.contact.edge_targets =
+        false;  // the node scales of eqs. 19 / 6.16 themselves (§6.12: a third)
     finalize_model(m);
     return m;
 }
 
 TEST(ContactScaling, LengthScaleIsTributaryBoundaryLengthOverSmallestEdge) {
     const Model m = two_rectangles(ContactScaling::Length);
-    const ContactModel& cm = m.contact;
+    const ContactTopology topo = build_topology(m);
+    const ContactTopology& cm = topo;
     EXPECT_DOUBLE_EQ(cm.l_bar, 0.2);
     for (NodeId i = m.bodies[0].node_begin; i < m.bodies[0].node_end; ++i) {
         const Vec2 p = m.node_x0[i];
@@ -53,12 +55,14 @@ TEST(ContactScaling, LengthScaleIsTributaryBoundaryLengthOverSmallestEdge) {
 TEST(ContactScaling, MassScaleIsEq19AndDefault) {
     EXPECT_EQ(ContactModel{}.scaling, ContactScaling::Mass);
     const Model m = two_rectangles(ContactScaling::Mass);
-    const ContactModel& cm = m.contact;
+    const ContactTopology topo = build_topology(m);
+    const ContactTopology& cm = topo;
     // mbar = smallest element mass: block cells 0.25 x 0.25 -> rho A = 1000 * 0.03125
-    EXPECT_DOUBLE_EQ(cm.m_bar, 31.25);
-    EXPECT_EQ(cm.m_dt, cm.m_bar);
+    EXPECT_DOUBLE_EQ(m.contact.m_bar, 31.25);
+    EXPECT_EQ(cm.m_dt, m.contact.m_bar);
     for (NodeId i = 0; i < m.num_nodes(); ++i)
-        EXPECT_EQ(cm.node_scale[i], m.node_mass[i] / cm.m_bar);  // bitwise the old expression
+        EXPECT_EQ(cm.node_scale[i],
+                  m.node_mass[i] / m.contact.m_bar);  // bitwise the old expression
 }
 
 }  // namespace

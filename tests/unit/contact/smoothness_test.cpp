@@ -20,7 +20,7 @@ TEST(ContactSmoothness, SlidingNodeConstantDepthPerturbedMesh) {
         for (int k = 0; k <= K; ++k) {
             const Vec2 x{3.0 + 6.0 * k / K, 3.0 - 0.1};
             FieldSample fs;
-            ASSERT_TRUE(testing::field_at(m, 0, x, fs));
+            ASSERT_TRUE(testing::field_at(m, b.topo, 0, x, fs));
             F[k] = 2.0 * fs.d * norm(fs.grad);  // |f_n| / k_n with phi = d^2 (eq. 6)
             // exact direction: grad d points into the contactor, (0, -1)
             dir_err = std::max(dir_err, std::abs(std::atan2(fs.grad.x, -fs.grad.y)));

@@ -2,9 +2,11 @@
 // fallback) and distance-field patch tests (spec §6.5).
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <map>
 #include <random>
 
+#include "contact/validate.hpp"
 #include "fdem/error.hpp"
 #include "unit/contact/contact_fixture.hpp"
 
@@ -17,8 +19,7 @@ struct Counts {
     size_t bedges, bnodes, btris, chords, virt, subs;
 };
 
-Counts counts(const Model& m) {
-    const ContactModel& c = m.contact;
+Counts counts(const ContactTopology& c) {
     return {c.boundary_edges.size(),
             c.boundary_nodes.size(),
             c.boundary_tris.size(),
@@ -28,10 +29,11 @@ Counts counts(const Model& m) {
 }
 
 // every sub-triangle is counter-clockwise in the reference configuration
-void expect_ccw(const Model& m) {
-    for (const auto& q : m.contact.sub_tri) {
-        EXPECT_GT(signed_area(testing::contact_node_x0(m, q[0]), testing::contact_node_x0(m, q[1]),
-                              testing::contact_node_x0(m, q[2])),
+void expect_ccw(const Model& m, const ContactTopology& topo) {
+    for (const auto& q : topo.sub_tri) {
+        EXPECT_GT(signed_area(testing::contact_node_x0(m, topo, q[0]),
+                              testing::contact_node_x0(m, topo, q[1]),
+                              testing::contact_node_x0(m, topo, q[2])),
                   0);
     }
 }
@@ -43,16 +45,17 @@ TEST(ContactTopology, TwoTriangleSquare) {
     ModelBuilder b;
     b.add_body(make_rectangle_mesh(0, 0, 1, 1, 1, 1));
     const Model& m = b.finalize();
-    const Counts c = counts(m);
+    const ContactTopology& topo = b.topo;
+    const Counts c = counts(topo);
     EXPECT_EQ(c.bedges, 4u);
     EXPECT_EQ(c.bnodes, 4u);
     EXPECT_EQ(c.btris, 2u);
     EXPECT_EQ(c.chords, 1u);
     EXPECT_EQ(c.virt, 1u);
-    EXPECT_EQ(c.subs, 4u);                          // 1-chord split of both triangles = centre fan
-    EXPECT_DOUBLE_EQ(m.contact.node_dist[4], 0.5);  // the chord midpoint is the centre
-    EXPECT_EQ(m.contact.num_fallback_nodes, 0);
-    expect_ccw(m);
+    EXPECT_EQ(c.subs, 4u);                     // 1-chord split of both triangles = centre fan
+    EXPECT_DOUBLE_EQ(topo.node_dist[4], 0.5);  // the chord midpoint is the centre
+    EXPECT_EQ(topo.num_fallback_nodes, 0);
+    expect_ccw(m, topo);
 }
 
 // Edge targets (docs/theory.md §6.12, eq. 6.19) of the two-triangle unit square: corner masses
@@ -64,7 +67,8 @@ TEST(ContactTopology, EdgeTargetsSimpsonShares) {
         b.m.contact.edge_targets = on;
         b.add_body(make_rectangle_mesh(0, 0, 1, 1, 1, 1));
         const Model& m = b.finalize();
-        const ContactModel& c = m.contact;
+        const ContactTopology& topo = b.topo;
+        const ContactTopology& c = topo;
         EXPECT_EQ(c.num_virtual(), 1);  // the chord midpoint only: edge targets are not nodes
         EXPECT_EQ(c.edge_target_base, c.num_contact_nodes());
         if (!on) {
@@ -102,8 +106,8 @@ TEST(ContactTopology, EdgeTargetsUniformFaceKeepsScale) {
     ModelBuilder b;
     b.m.contact.scaling = ContactScaling::Length;
     b.add_body(make_rectangle_mesh(0, 0, 4, 1, 8, 2));
-    const Model& m = b.finalize();
-    const ContactModel& c = m.contact;
+    b.finalize();
+    const ContactTopology& c = b.topo;
     // length scaling: Simpson's rule exactly, w_e = (2/3) l_e / lbar, nodes keep l_j / (6 lbar)
     for (int32_t e = 0; e < c.num_edge_targets(); ++e)
         EXPECT_NEAR(c.edge_scale[e], 2.0 / 3.0, 1e-14);
@@ -116,16 +120,17 @@ TEST(ContactTopology, SingleTriangleIncenterFan) {
     ModelBuilder b;
     b.add_body(testing::mesh_of({{0, 0}, {4, 0}, {0, 3}}, {{0, 1, 2}}));
     const Model& m = b.finalize();
-    const Counts c = counts(m);
+    const ContactTopology& topo = b.topo;
+    const Counts c = counts(topo);
     EXPECT_EQ(c.bedges, 3u);
     EXPECT_EQ(c.chords, 0u);
     EXPECT_EQ(c.virt, 1u);
     EXPECT_EQ(c.subs, 3u);
-    const Vec2 inc = testing::contact_node_x0(m, 3);
+    const Vec2 inc = testing::contact_node_x0(m, topo, 3);
     EXPECT_NEAR(inc.x, 1.0, 1e-15);
     EXPECT_NEAR(inc.y, 1.0, 1e-15);
-    EXPECT_NEAR(m.contact.node_dist[3], 1.0, 1e-15);
-    expect_ccw(m);
+    EXPECT_NEAR(topo.node_dist[3], 1.0, 1e-15);
+    expect_ccw(m, topo);
 }
 
 TEST(ContactTopology, FourByFourSquare) {
@@ -133,7 +138,8 @@ TEST(ContactTopology, FourByFourSquare) {
     ModelBuilder b;
     b.add_body(make_rectangle_mesh(0, 0, 4, 4, 4, 4));
     const Model& m = b.finalize();
-    const Counts c = counts(m);
+    const ContactTopology& topo = b.topo;
+    const Counts c = counts(topo);
     EXPECT_EQ(c.bedges, 16u);
     EXPECT_EQ(c.bnodes, 16u);
     EXPECT_EQ(c.btris, 24u);  // 12 ring cells x 2; the central 2x2 cells touch no boundary node
@@ -145,10 +151,10 @@ TEST(ContactTopology, FourByFourSquare) {
         const Vec2 x = m.node_x0[i];
         const Real exact = std::min({x.x, x.y, 4 - x.x, 4 - x.y});
         if (exact == 1.0) {
-            EXPECT_DOUBLE_EQ(m.contact.node_dist[i], 1.0) << i;
+            EXPECT_DOUBLE_EQ(topo.node_dist[i], 1.0) << i;
         }
     }
-    expect_ccw(m);
+    expect_ccw(m, topo);
 }
 
 // ring of n quads between radii 1 and 2, each split in two: one element thick, every
@@ -170,18 +176,19 @@ TEST(ContactTopology, AnnulusOneElementThick) {
     ModelBuilder b;
     b.add_body(testing::mesh_of(nodes, tris));
     const Model& m = b.finalize();
-    const Counts c = counts(m);
+    const ContactTopology& topo = b.topo;
+    const Counts c = counts(topo);
     EXPECT_EQ(c.bedges, 2u * n);
     EXPECT_EQ(c.bnodes, 2u * n);
     EXPECT_EQ(c.btris, 2u * n);
     EXPECT_EQ(c.chords, 2u * n);
     EXPECT_EQ(c.subs, 6u * n);  // 2-chord split: 3 sub-triangles per element
-    expect_ccw(m);
+    expect_ccw(m, topo);
     // no interior point of the ring has d = 0 any more: mid-radius points are positive
     for (int k = 0; k < 64; ++k) {
         const Real a = 2 * M_PI * (k + 0.37) / 64;
         FieldSample fs;
-        ASSERT_TRUE(testing::field_at(m, 0, {1.5 * std::cos(a), 1.5 * std::sin(a)}, fs));
+        ASSERT_TRUE(testing::field_at(m, topo, 0, {1.5 * std::cos(a), 1.5 * std::sin(a)}, fs));
         EXPECT_GT(fs.d, 0.3);  // chord midpoints sit ~0.5 deep; polygonal ring, so not exact
     }
 }
@@ -204,28 +211,30 @@ TEST(ContactTopology, LShape) {
     opt.name = "L";
     add_bodies(b.m, g, keep, opt);
     const Model& m = b.finalize();
-    const Counts c = counts(m);
+    const ContactTopology& topo = b.topo;
+    const Counts c = counts(topo);
     EXPECT_EQ(m.num_nodes(), 8);
     EXPECT_EQ(c.bedges, 8u);
     EXPECT_EQ(c.bnodes, 8u);
     EXPECT_EQ(c.btris, 6u);
     EXPECT_EQ(c.chords, 5u);  // (3*6 - 8)/2 interior edges, all between boundary nodes
-    expect_ccw(m);
+    expect_ccw(m, topo);
 }
 
 TEST(ContactTopology, StripOneElementThick) {
     ModelBuilder b;
     b.add_body(make_rectangle_mesh(0, 0, 4, 1, 4, 1));
     const Model& m = b.finalize();
-    const Counts c = counts(m);
+    const ContactTopology& topo = b.topo;
+    const Counts c = counts(topo);
     EXPECT_EQ(c.bedges, 10u);
     EXPECT_EQ(c.bnodes, 10u);
     EXPECT_EQ(c.btris, 8u);
     EXPECT_EQ(c.chords, 7u);  // 3 verticals + 4 diagonals
-    expect_ccw(m);
+    expect_ccw(m, topo);
     // the mid-line of the strip is 0.5 deep at the vertical chords
     FieldSample fs;
-    ASSERT_TRUE(testing::field_at(m, 0, {2.0, 0.5}, fs));
+    ASSERT_TRUE(testing::field_at(m, topo, 0, {2.0, 0.5}, fs));
     EXPECT_NEAR(fs.d, 0.5, 1e-12);
 }
 
@@ -238,30 +247,31 @@ TEST(ContactTopology, NodalDistancesPerturbedMesh) {
         ModelBuilder b;
         b.add_body(g);
         const Model& m = b.finalize();
+        const ContactTopology& topo = b.topo;
         const std::vector<Vec2> rect{{0, 0}, {12, 0}, {12, 3}, {0, 3}};
         int inner = 0;
         for (NodeId i = 0; i < m.num_nodes(); ++i) {
-            if (m.contact.node_on_boundary[i]) {
-                EXPECT_EQ(m.contact.node_dist[i], 0.0);
+            if (topo.node_on_boundary[i]) {
+                EXPECT_EQ(topo.node_dist[i], 0.0);
                 continue;
             }
             const Real exact = testing::polygon_distance(rect, m.node_x0[i]);
             // eq. 1 gives the depth below one face line: >= the distance to the rectangle
-            EXPECT_GE(m.contact.node_dist[i], exact - 1e-12) << i;
+            EXPECT_GE(topo.node_dist[i], exact - 1e-12) << i;
             // first layer away from the corners: only one face nearby, so exact (1e-12: round-off)
             const Vec2 x = m.node_x0[i];
             if (x.x > 1.5 && x.x < 10.5) {
-                EXPECT_NEAR(m.contact.node_dist[i], exact, 1e-12) << i;
+                EXPECT_NEAR(topo.node_dist[i], exact, 1e-12) << i;
                 ++inner;
             }
         }
         EXPECT_EQ(inner, 2 * 9);  // columns i = 2..10 of rows j = 1, 2
         // alternating diagonals leave nodes without an opposite boundary edge (spec §4.2)
         if (alternate) {
-            EXPECT_GT(m.contact.num_fallback_nodes, 0);
+            EXPECT_GT(topo.num_fallback_nodes, 0);
         }
         std::printf("[ info ] alternate=%d: %d fallback nodes\n", alternate,
-                    m.contact.num_fallback_nodes);
+                    topo.num_fallback_nodes);
     }
 }
 
@@ -271,6 +281,7 @@ void patch_test(const MeshData& mesh, const std::vector<Vec2>& poly, Real size, 
     ModelBuilder b;
     b.add_body(mesh);
     const Model& m = b.finalize();
+    const ContactTopology& topo = b.topo;
     Vec2 lo = poly[0], hi = lo;
     for (const Vec2& p : poly) {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
@@ -283,7 +294,7 @@ void patch_test(const MeshData& mesh, const std::vector<Vec2>& poly, Real size, 
     while (n < 10000) {
         const Vec2 x{ux(rng), uy(rng)};
         FieldSample fs;
-        if (!testing::field_at(m, 0, x, fs)) continue;
+        if (!testing::field_at(m, topo, 0, x, fs)) continue;
         err = std::max(err, std::abs(fs.d - testing::polygon_distance(poly, x)));
         ++n;
     }
@@ -320,13 +331,14 @@ TEST(ContactField, PatchHalfPlaneLayerPerturbedMesh) {
     ModelBuilder b;
     b.add_body(g);
     const Model& m = b.finalize();
+    const ContactTopology& topo = b.topo;
     std::mt19937 rng(5);
     std::uniform_real_distribution<Real> ux(2.5, 9.5), uy(0, 0.7);
     Real err = 0;
     for (int n = 0; n < 10000; ++n) {
         const Vec2 x{ux(rng), uy(rng)};
         FieldSample fs;
-        ASSERT_TRUE(testing::field_at(m, 0, x, fs));
+        ASSERT_TRUE(testing::field_at(m, topo, 0, x, fs));
         err = std::max(err, std::abs(fs.d - x.y));
         EXPECT_NEAR(fs.grad.x, 0.0, 1e-12);
         EXPECT_NEAR(fs.grad.y, 1.0, 1e-12);
@@ -340,6 +352,7 @@ TEST(ContactField, RectangleTwoByOneIsNotExact) {
     ModelBuilder b;
     b.add_body(make_rectangle_mesh(0, 0, 2, 1, 1, 1));
     const Model& m = b.finalize();
+    const ContactTopology& topo = b.topo;
     const std::vector<Vec2> poly{{0, 0}, {2, 0}, {2, 1}, {0, 1}};
     std::mt19937 rng(8);
     std::uniform_real_distribution<Real> ux(0, 2), uy(0, 1);
@@ -347,7 +360,7 @@ TEST(ContactField, RectangleTwoByOneIsNotExact) {
     for (int n = 0; n < 10000; ++n) {
         const Vec2 x{ux(rng), uy(rng)};
         FieldSample fs;
-        ASSERT_TRUE(testing::field_at(m, 0, x, fs));
+        ASSERT_TRUE(testing::field_at(m, topo, 0, x, fs));
         err = std::max(err, std::abs(fs.d - testing::polygon_distance(poly, x)));
         gmin = std::min(gmin, norm(fs.grad));
         gmax = std::max(gmax, norm(fs.grad));
@@ -369,7 +382,8 @@ TEST(ContactField, ConformingSubTriangulation) {
     b.add_body(g);
     b.add_body(make_rectangle_mesh(10, 0, 4, 1, 4, 1));  // strip
     const Model& m = b.finalize();
-    const ContactModel& cm = m.contact;
+    const ContactTopology& topo = b.topo;
+    const ContactTopology& cm = topo;
     std::map<std::array<NodeId, 2>, int> use;
     for (const auto& q : cm.sub_tri) {
         for (int k = 0; k < 3; ++k) {
@@ -438,6 +452,169 @@ TEST(ContactParameters, PairParametersAndValidation) {
         EXPECT_EQ(e.key(), "contact.alpha");
         EXPECT_NE(std::string(e.what()).find("alpha must be >= 1, got 0.5"), std::string::npos);
     }
+}
+
+// ---- rebuild_topology (issue #14 item 1, spec fracture.md U6) ----------------------------------
+
+template <typename T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+template <typename T>
+bool same_bits(const T& a, const T& b) {
+    return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+// Names of the fields of a and b that differ in any bit (every field of ContactTopology).
+std::string differing_fields(const ContactTopology& a, const ContactTopology& b) {
+    std::string d;
+    auto cmp = [&](const char* name, bool same) {
+        if (!same) d += std::string(name) + " ";
+    };
+#define FDEM_CMP(f) cmp(#f, same_bits(a.f, b.f))
+    FDEM_CMP(num_real_nodes);
+    FDEM_CMP(node_scale);
+    FDEM_CMP(l_bar);
+    FDEM_CMP(m_dt);
+    FDEM_CMP(edge_target_base);
+    FDEM_CMP(edge_scale);
+    FDEM_CMP(target_dt_factor);
+    FDEM_CMP(virt_parent);
+    FDEM_CMP(virt_weight);
+    FDEM_CMP(body_virt_begin);
+    FDEM_CMP(node_dist);
+    FDEM_CMP(node_dist_edge);
+    FDEM_CMP(node_on_boundary);
+    FDEM_CMP(num_fallback_nodes);
+    FDEM_CMP(body_fallback);
+    FDEM_CMP(body_fixed);
+    FDEM_CMP(boundary_nodes);
+    FDEM_CMP(body_bnode_begin);
+    FDEM_CMP(boundary_edges);
+    FDEM_CMP(body_bedge_begin);
+    FDEM_CMP(chords);
+    FDEM_CMP(body_chord_begin);
+    FDEM_CMP(boundary_tris);
+    FDEM_CMP(body_btri_begin);
+    FDEM_CMP(sub_tri);
+    FDEM_CMP(sub_body);
+    FDEM_CMP(sub_parent);
+    FDEM_CMP(body_sub_begin);
+    FDEM_CMP(body_cnode);
+    FDEM_CMP(body_cnode_begin);
+    FDEM_CMP(body_cnode_nreal);
+    FDEM_CMP(sub_local);
+#undef FDEM_CMP
+    // LegacyBoundaryTri has padding after `terms`: compare its members
+    bool legacy = a.sub_legacy_b.size() == b.sub_legacy_b.size();
+    for (size_t k = 0; legacy && k < a.sub_legacy_b.size(); ++k) {
+        const LegacyBoundaryTri &p = a.sub_legacy_b[k], &q = b.sub_legacy_b[k];
+        legacy = p.terms == q.terms && same_bits(p.coef, q.coef) && same_bits(p.h_ref, q.h_ref);
+    }
+    cmp("sub_legacy_b", legacy);
+    return d;
+}
+
+// Four bodies: a perturbed 3 x 2 rectangle, a single triangle, a 4 x 2 rectangle and a composite
+// 2 x 1 rectangle (Split: virtual nodes of its own), so that virtual node and boundary edge ids
+// of later bodies depend on the earlier ones.
+Model four_bodies(ContactAlgorithm algorithm, ContactScaling scaling) {
+    testing::ModelBuilder b;
+    b.m.contact.algorithm = algorithm;
+    b.m.contact.scaling = scaling;
+    b.m.contact.composite_special_case = CompositeSpecialCase::Split;
+    MeshData r = make_rectangle_mesh(0, 0, 3, 2, 3, 2);
+    testing::perturb_interior(r, 0.1, 11);
+    b.add_body(r);
+    b.add_body(testing::mesh_of({{5, 0}, {6, 0}, {5.2, 0.9}}, {{{0, 1, 2}}}));
+    b.add_body(make_rectangle_mesh(0, 3, 4, 2, 4, 2));
+    b.add_body(make_rectangle_mesh_order2(7, 0, 2, 1, 2, 1));
+    return b.finalize();
+}
+
+// The same bodies with body 0's inner nodes moved (new nodal distances) and one diagonal of
+// body 2 flipped so that it joins two boundary nodes (a new chord: one more virtual node, which
+// shifts the virtual ids of body 3).
+Model cracked(const Model& m0) {
+    Model m = m0;
+    const Body& b0 = m.bodies[0];
+    const ContactTopology t0 = build_topology(m0);
+    for (NodeId i = b0.node_begin; i < b0.node_end; ++i) {
+        if (!t0.node_on_boundary[i]) m.node_x0[i] += Vec2{0.05, -0.03};
+    }
+    const Body& b2 = m.bodies[2];
+    for (TriId t1 = b2.tri_begin; t1 < b2.tri_end; ++t1) {
+        for (TriId t2 = t1 + 1; t2 < b2.tri_end; ++t2) {
+            for (int k = 0; k < 3; ++k) {
+                const auto n1 = m.tri_nodes[t1];
+                const NodeId p = n1[k], q = n1[(k + 1) % 3], r = n1[(k + 2) % 3];
+                const auto& n2 = m.tri_nodes[t2];
+                for (int l = 0; l < 3; ++l) {
+                    if (n2[l] != q || n2[(l + 1) % 3] != p) continue;
+                    const NodeId s = n2[(l + 2) % 3];
+                    // p-q interior, r and s boundary nodes: the flipped diagonal r-s is a chord
+                    if (!t0.node_on_boundary[r] || !t0.node_on_boundary[s]) continue;
+                    if (t0.node_on_boundary[p] && t0.node_on_boundary[q]) continue;
+                    m.tri_nodes[t1] = {r, p, s};
+                    m.tri_nodes[t2] = {s, q, r};
+                    return m;
+                }
+            }
+        }
+    }
+    ADD_FAILURE() << "no diagonal to flip";
+    return m;
+}
+
+TEST(RebuildTopology, UnchangedMeshAnySubsetIsBitwiseTheFreshBuild) {
+    for (ContactAlgorithm a : {ContactAlgorithm::Smooth, ContactAlgorithm::LegacyBoundary}) {
+        for (ContactScaling sc : {ContactScaling::Mass, ContactScaling::Length}) {
+            const Model m = four_bodies(a, sc);
+            const ContactTopology fresh = build_topology(m);
+            ASSERT_GT(fresh.num_virtual(), 0);
+            const std::vector<std::vector<BodyId>> subsets = {
+                {}, {0}, {1}, {3}, {0, 2}, {1, 3}, {3, 0, 3}, {0, 1, 2, 3}};
+            for (const auto& dirty : subsets) {
+                ContactTopology t = fresh;
+                rebuild_topology(m, dirty, t);
+                EXPECT_EQ(differing_fields(t, fresh), "") << dirty.size() << " dirty";
+                EXPECT_TRUE(validate_topology(m, t).empty());
+            }
+        }
+    }
+}
+
+TEST(RebuildTopology, ChangedBodiesRebuiltGiveTheFreshBuildOfTheChangedMesh) {
+    for (ContactScaling sc : {ContactScaling::Mass, ContactScaling::Length}) {
+        const Model m0 = four_bodies(ContactAlgorithm::Smooth, sc);
+        const Model m1 = cracked(m0);
+        const ContactTopology before = build_topology(m0);
+        const ContactTopology fresh = build_topology(m1);
+        ASSERT_TRUE(validate_topology(m1, fresh).empty());
+        ASSERT_EQ(fresh.num_virtual(), before.num_virtual() + 1);  // the new chord's mid-node
+        ASSERT_NE(differing_fields(fresh, before), "");
+
+        ContactTopology t = before;
+        rebuild_topology(m1, std::vector<BodyId>{2, 0}, t);
+        EXPECT_EQ(differing_fields(t, fresh), "");
+        const auto bad = validate_topology(m1, t);
+        EXPECT_TRUE(bad.empty()) << bad.front();
+
+        // the test can fail: a changed body left out keeps its old (now wrong) part
+        for (const std::vector<BodyId>& partial : {std::vector<BodyId>{0}, {2}, {1, 3}}) {
+            ContactTopology p = before;
+            rebuild_topology(m1, partial, p);
+            EXPECT_NE(differing_fields(p, fresh), "") << partial.front();
+        }
+    }
+}
+
+TEST(RebuildTopology, BodyOutOfRangeIsRejected) {
+    const Model m = four_bodies(ContactAlgorithm::Smooth, ContactScaling::Mass);
+    ContactTopology t = build_topology(m);
+    EXPECT_THROW(rebuild_topology(m, std::vector<BodyId>{4}, t), std::invalid_argument);
+    EXPECT_THROW(rebuild_topology(m, std::vector<BodyId>{-1}, t), std::invalid_argument);
 }
 
 }  // namespace

@@ -45,10 +45,11 @@ TEST(BroadPhase, EqualsBruteForceOnRandomLayouts) {
         State s = make_state(m, 1e-6);
         update_virtual_nodes(m, s);
         ContactState grid = s.contact, scalar = s.contact, brute = s.contact;
-        find_candidates(m, s.x.data(), s.contact.xv.data(), grid.cand, grid.broad);
-        find_candidates(m, s.x.data(), s.contact.xv.data(), scalar.cand, scalar.broad,
+        find_candidates(m, s.topology, s.x.data(), s.contact.xv.data(), grid.cand, grid.broad);
+        find_candidates(m, s.topology, s.x.data(), s.contact.xv.data(), scalar.cand, scalar.broad,
                         BroadKernel::Scalar);
-        find_candidates_brute_force(m, s.x.data(), s.contact.xv.data(), brute.cand, brute.broad);
+        find_candidates_brute_force(m, s.topology, s.x.data(), s.contact.xv.data(), brute.cand,
+                                    brute.broad);
         for (const ContactState* c : {&grid, &scalar}) {
             const char* path = c == &grid ? "default" : "portable";
             ASSERT_EQ(c->cand.node, brute.cand.node) << "layout " << layout << ", " << path;
@@ -70,16 +71,20 @@ TEST(BroadPhase, RepeatedDetectionsUseNoStaleScratch) {
     const Model m = random_layout(rng, 400, 20.0, true);
     State s = make_state(m, 1e-6);
     update_virtual_nodes(m, s);
-    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad);
+    find_candidates(m, s.topology, s.x.data(), s.contact.xv.data(), s.contact.cand,
+                    s.contact.broad);
     const std::vector<int32_t> first = s.contact.cand.tri;
-    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad);
+    find_candidates(m, s.topology, s.x.data(), s.contact.xv.data(), s.contact.cand,
+                    s.contact.broad);
     EXPECT_EQ(s.contact.cand.tri, first);
     for (Vec2& p : s.x)
         p = Vec2{p.x * 0.7 + 1.0, p.y * 0.7 - 2.0};  // denser: more candidates than before
     update_virtual_nodes(m, s);
     ContactState brute = s.contact;
-    find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad);
-    find_candidates_brute_force(m, s.x.data(), s.contact.xv.data(), brute.cand, brute.broad);
+    find_candidates(m, s.topology, s.x.data(), s.contact.xv.data(), s.contact.cand,
+                    s.contact.broad);
+    find_candidates_brute_force(m, s.topology, s.x.data(), s.contact.xv.data(), brute.cand,
+                                brute.broad);
     EXPECT_GT(s.contact.cand.tri.size(), first.size());
     EXPECT_EQ(s.contact.cand.node, brute.cand.node);
     EXPECT_EQ(s.contact.cand.body, brute.cand.body);
@@ -95,7 +100,8 @@ TEST(BroadPhase, RoughlyLinearRuntime) {
         State s = make_state(m, 1e-6);
         update_virtual_nodes(m, s);
         const auto t0 = std::chrono::steady_clock::now();
-        find_candidates(m, s.x.data(), s.contact.xv.data(), s.contact.cand, s.contact.broad);
+        find_candidates(m, s.topology, s.x.data(), s.contact.xv.data(), s.contact.cand,
+                        s.contact.broad);
         const auto t1 = std::chrono::steady_clock::now();
         std::printf("[ info ] %d bodies: %.2f ms, %zu couples\n", n,
                     std::chrono::duration<double, std::milli>(t1 - t0).count(),

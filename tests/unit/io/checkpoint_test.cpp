@@ -213,7 +213,8 @@ TEST(CheckpointModelHash, DependsOnTheElementKind) {
     const Model composite = build(ElementKind::Composite6);
     const Model cst = build(ElementKind::Cst);
     ASSERT_EQ(composite.tri_nodes, cst.tri_nodes);  // the premise: only the kind differs
-    EXPECT_NE(model_hash(composite, 1e-6), model_hash(cst, 1e-6));
+    EXPECT_NE(model_hash(composite, build_topology(composite), 1e-6),
+              model_hash(cst, build_topology(cst), 1e-6));
 }
 
 // Layout: 8 magic bytes, u32 format, u32 endian marker, u64 length + version string.
@@ -276,7 +277,10 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // every step before bodies.csv reads them after it) is not saved
     // 1096 -> 1120: ContactState 800 -> 824 above
     // 1120 -> 1168: State::bc_velocity, bc_enabled (the controls), saved since format 6
-    EXPECT_EQ(sizeof(State), 1168u) << "State changed: update io/checkpoint.cpp";
+    // 1168 -> 1864: State::topology (the contact topology, moved from the Model): not saved, a
+    // function of the Model rebuilt by make_state() before the file is read; the model hash
+    // covers the arrays it was built with
+    EXPECT_EQ(sizeof(State), 1864u) << "State changed: update io/checkpoint.cpp";
 }
 
 // Loads (theory §4.1): the half of the load work that belongs after t^n travels in
@@ -330,7 +334,8 @@ force = [0, 1e4]
     std::string other = text;
     other.replace(other.find("pressure = 1e6"), 14, "pressure = 2e6");
     const Scenario sc2 = load_scenario_from_string(other, "loads.toml", FDEM_TEST_DATA_DIR);
-    EXPECT_NE(model_hash(sc2.model, sc.run.dt), model_hash(m, sc.run.dt));
+    EXPECT_NE(model_hash(sc2.model, build_topology(sc2.model), sc.run.dt),
+              model_hash(m, build_topology(m), sc.run.dt));
     fs::remove(path);
 }
 

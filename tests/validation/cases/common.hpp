@@ -128,8 +128,7 @@ inline double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
 
 /// Reference position of contact node i: a model node, or a virtual node placed by its frozen
 /// parent weights (fdem/contact_model.hpp).
-inline Vec2 contact_node_x0(const Model& m, NodeId i) {
-    const ContactModel& cm = m.contact;
+inline Vec2 contact_node_x0(const Model& m, const ContactTopology& cm, NodeId i) {
     if (i < cm.num_real_nodes) return m.node_x0[i];
     const int32_t v = i - cm.num_real_nodes;
     Vec2 p;
@@ -141,14 +140,15 @@ inline Vec2 contact_node_x0(const Model& m, NodeId i) {
 /// One row (x0, y0, x1, y1, x2, y2) per mesh triangle into mesh and per contact sub-triangle into
 /// sub: the outlines drawn under the field maps.
 inline void outline_rows(const Model& m, Table& mesh, Table& sub) {
+    const ContactTopology topo = build_topology(m);
     for (TriId t = 0; t < m.num_tris(); ++t) {
         const auto& tn = m.tri_nodes[t];
         mesh.row({m.node_x0[tn[0]].x, m.node_x0[tn[0]].y, m.node_x0[tn[1]].x, m.node_x0[tn[1]].y,
                   m.node_x0[tn[2]].x, m.node_x0[tn[2]].y});
     }
-    for (const auto& q : m.contact.sub_tri) {
-        const Vec2 a = contact_node_x0(m, q[0]), b = contact_node_x0(m, q[1]),
-                   c = contact_node_x0(m, q[2]);
+    for (const auto& q : topo.sub_tri) {
+        const Vec2 a = contact_node_x0(m, topo, q[0]), b = contact_node_x0(m, topo, q[1]),
+                   c = contact_node_x0(m, topo, q[2]);
         sub.row({a.x, a.y, b.x, b.y, c.x, c.y});
     }
 }
@@ -185,11 +185,11 @@ inline double max_active_depth(const State& s) {
 /// sum s_j d_j / sum s_j over the active pairs of the last step. On a flat face the normal force
 /// is sum s_j 2 k_n d_j (g = 2d, |grad d| = 1), so for a given load this mean scales exactly as
 /// 1/k_n as long as the same nodes touch.
-inline double scaled_mean_depth(const Model& m, const State& s) {
+inline double scaled_mean_depth(const Model& /*m*/, const State& s) {
     double sd = 0, ss = 0;
     for (const auto& a : s.contact.active) {
         if (a.h.d_prev <= 0) continue;
-        const double sc = target_scale(m.contact, a.node);  // node or edge target (§6.12)
+        const double sc = target_scale(s.topology, a.node);  // node or edge target (§6.12)
         sd += sc * a.h.d_prev;
         ss += sc;
     }

@@ -65,8 +65,8 @@ inline CompositeFieldResult sample_composite_field(const CompositeFieldCase& fc,
     scenes::add_composite_body(m, scenes::composite_mesh(fc.corners, fc.tris), 0, false, {},
                                fc.shape);
     finalize_model(m);
-    const ContactModel& cm = m.contact;
-    auto cpos = [&](NodeId i) { return contact_node_x0(m, i); };
+    const ContactTopology cm = build_topology(m);
+    auto cpos = [&](NodeId i) { return contact_node_x0(m, cm, i); };
     CompositeFieldResult r;
     r.num_sub = cm.num_sub_tris();
     r.num_virtual = cm.num_virtual();

@@ -80,9 +80,9 @@ inline FieldMapResult sample_field(const FieldShape& sh, int n = 240) {
     add_bodies(m, sh.mesh, all, opt);
     m.contact.algorithm = ContactAlgorithm::Smooth;
     finalize_model(m);
-    const ContactModel& cm = m.contact;
-    const LegacyBoundaryField lb = build_legacy_boundary_field(m);
-    auto cpos = [&](NodeId i) { return contact_node_x0(m, i); };
+    const ContactTopology cm = build_topology(m);
+    const LegacyBoundaryField lb = build_legacy_boundary_field(m, cm);
+    auto cpos = [&](NodeId i) { return contact_node_x0(m, cm, i); };
     FieldMapResult r;
     r.name = sh.name;
     Vec2 lo{1e30, 1e30}, hi{-1e30, -1e30};

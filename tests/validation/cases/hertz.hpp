@@ -148,7 +148,8 @@ inline HertzResult run_hertz(const HertzOptions& o) {
     // (g' = 2 for alpha = 1, phi = d^2): dt <= 2 / omega, and the element bound (theory §5).
     Model no_contact = m;
     no_contact.contact.algorithm = ContactAlgorithm::None;
-    const double dt_contact = 2.0 / std::sqrt(2.0 * m.contact.params.penalty / m.contact.m_dt);
+    const double dt_contact =
+        2.0 / std::sqrt(2.0 * m.contact.params.penalty / build_topology(m).m_dt);
     const double dt = o.dt_fraction * std::min(stable_time_step(no_contact),
                                                o.two_way ? stable_time_step(m) : dt_contact);
     r.dt = dt;
@@ -166,7 +167,7 @@ inline HertzResult run_hertz(const HertzOptions& o) {
     // tributary length of each disk boundary node: half of its two boundary edges, projected
     // on x (the pressure acts on the plane y = 0)
     std::map<NodeId, double> trib;
-    const ContactModel& cm = m.contact;
+    const ContactTopology& cm = s.topology;
     for (int32_t e = cm.body_bedge_begin[0]; e < cm.body_bedge_begin[1]; ++e) {
         const auto [i, j] = cm.boundary_edges[static_cast<size_t>(e)];
         const double lx = std::abs(s.x[j].x - s.x[i].x);

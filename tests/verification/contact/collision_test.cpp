@@ -219,8 +219,9 @@ TEST(ContactCollision, LAndVShapesDropOntoPlate) {
         EXPECT_LE(r.drift, 0.01);
         EXPECT_EQ(r.lost, 0);
         // no false zero-distance valley: every chord midpoint of the body is inside the layer
-        for (int32_t v = 0; v < m.contact.num_virtual(); ++v) {
-            EXPECT_GT(m.contact.node_dist[m.contact.num_real_nodes + v], 0.0);
+        const ContactTopology topo = build_topology(m);
+        for (int32_t v = 0; v < topo.num_virtual(); ++v) {
+            EXPECT_GT(topo.node_dist[topo.num_real_nodes + v], 0.0);
         }
     }
 }
@@ -288,7 +289,7 @@ TEST(ContactCollision, NoReallocationAfterWarmUp) {
     EXPECT_GT(c.rebuilds, rebuilds);  // the broad phase did run again
     EXPECT_EQ(before, after);
     // the two active-pair buffers swap every step; their capacity was reserved at start
-    EXPECT_GE(c.active.capacity(), m.contact.boundary_nodes.size());
+    EXPECT_GE(c.active.capacity(), s.topology.boundary_nodes.size());
 }
 
 }  // namespace

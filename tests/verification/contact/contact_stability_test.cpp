@@ -125,7 +125,8 @@ struct Limits {
     Real dt_e, dt_c, stable, dt_true;
 };
 Limits measure_limits(const Model& m, const char* what) {
-    Limits l{element_stable_time_step(m), contact_stable_dt(m), stable_time_step(m), 0};
+    Limits l{element_stable_time_step(m), contact_stable_dt(m, build_topology(m)),
+             stable_time_step(m), 0};
     State s = make_state(m, 0.1 * l.dt_c);
     for (int k = 0; k < 1000; ++k)
         step(m, s);
@@ -154,7 +155,7 @@ TEST(ContactStability, NodeTargetsBoundIsCloseToTheTrueLimit) {
 TEST(ContactStability, PrintedBoundIsBelowTheTrueLimitAndTheDefaultStepConserves) {
     const Scenario sc = resting_block("");
     const Model& m = sc.model;
-    const Real dt_e = element_stable_time_step(m), dt_c = contact_stable_dt(m);
+    const Real dt_e = element_stable_time_step(m), dt_c = contact_stable_dt(m, build_topology(m));
     EXPECT_EQ(sc.run.stable_dt, stable_time_step(m));
     const Limits l = measure_limits(m, "edge targets");
     // both bounds are safe. No closeness check here: target_dt_factor (4/3 for a node next to
