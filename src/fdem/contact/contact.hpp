@@ -31,7 +31,7 @@ void update_virtual_nodes(const Model& m, State& s);
 /// Narrow-phase early reject, exposed for tests: box[b] for every body b < nbodies from the
 /// positions of its contactor sub-triangles' vertices (x real, xv virtual), widened by a tiny
 /// margin, or infinite where the reject is not proven exact (contact.cpp has the proof).
-/// Reads the body's distinct contact nodes (ContactModel::body_cnode) once each; a model
+/// Reads the body's distinct contact nodes (ContactTopology::body_cnode) once each; a model
 /// without that list (hand-made in tests) or a body with many nodes takes the reference path.
 /// Bitwise the same boxes as body_boxes_reference() (proof at body_boxes(), tested).
 void body_boxes(const ContactTopology& cm, const Vec2* x, const Vec2* xv, BodyBox* box,
