@@ -297,6 +297,21 @@ py::dict energy_dict(const fdem::Energy& e) {
     return d;
 }
 
+/// (n_tris, 2, 2) array of one tensor of tri_fields() (stress or strain) for every triangle.
+py::array_t<double> tensor_field(const PySimulation& s, fdem::Mat2 fdem::TriFields::*member) {
+    const auto& m = s.sim.model();
+    py::array_t<double> a({static_cast<py::ssize_t>(m.num_tris()), py::ssize_t{2}, py::ssize_t{2}});
+    auto r = a.mutable_unchecked<3>();
+    for (fdem::TriId t = 0; t < m.num_tris(); ++t) {
+        const fdem::Mat2 v = fdem::tri_fields(m, s.sim.state(), t).*member;
+        r(t, 0, 0) = v.xx;
+        r(t, 0, 1) = v.xy;
+        r(t, 1, 0) = v.yx;
+        r(t, 1, 1) = v.yy;
+    }
+    return a;
+}
+
 const char* status_name(fdem::RunStatus s) {
     switch (s) {
         case fdem::RunStatus::Reached:
@@ -739,37 +754,11 @@ PYBIND11_MODULE(_fdem, mod) {
             "v"_a, "Copy (n_nodes, 2) velocities [m/s] into the state (state.v is also writable).")
         .def(
             "stress",
-            [](const PySimulation& s) {
-                const auto& m = s.sim.model();
-                py::array_t<double> a(
-                    {static_cast<py::ssize_t>(m.num_tris()), py::ssize_t{2}, py::ssize_t{2}});
-                auto r = a.mutable_unchecked<3>();
-                for (fdem::TriId t = 0; t < m.num_tris(); ++t) {
-                    const fdem::TriFields f = fdem::tri_fields(m, s.sim.state(), t);
-                    r(t, 0, 0) = f.stress.xx;
-                    r(t, 0, 1) = f.stress.xy;
-                    r(t, 1, 0) = f.stress.yx;
-                    r(t, 1, 1) = f.stress.yy;
-                }
-                return a;
-            },
+            [](const PySimulation& s) { return tensor_field(s, &fdem::TriFields::stress); },
             "(n_tris, 2, 2) Cauchy stress of each triangle [Pa] (a new array: derived data)")
         .def(
             "strain",
-            [](const PySimulation& s) {
-                const auto& m = s.sim.model();
-                py::array_t<double> a(
-                    {static_cast<py::ssize_t>(m.num_tris()), py::ssize_t{2}, py::ssize_t{2}});
-                auto r = a.mutable_unchecked<3>();
-                for (fdem::TriId t = 0; t < m.num_tris(); ++t) {
-                    const fdem::TriFields f = fdem::tri_fields(m, s.sim.state(), t);
-                    r(t, 0, 0) = f.strain.xx;
-                    r(t, 0, 1) = f.strain.xy;
-                    r(t, 1, 0) = f.strain.yx;
-                    r(t, 1, 1) = f.strain.yy;
-                }
-                return a;
-            },
+            [](const PySimulation& s) { return tensor_field(s, &fdem::TriFields::strain); },
             "(n_tris, 2, 2) Green-Lagrange strain of each triangle [-] (a new array)")
         .def(
             "von_mises",
