@@ -35,6 +35,26 @@ inline const Model& cached_block(int64_t num_tris, bool loaded, bool shuffled) {
 
 /// The contact-heavy pack (scenes::make_contact_pack) with about num_tris triangles (two per
 /// block, square raster), built once per process; the last big one is kept.
+/// The contact-saturated pack of issue #16: a brick-bond pack of two-triangle blocks converging
+/// on its centre (PackOptions::converge), neighbours closing at closing_speed [m/s]; every gap
+/// closes after about gap / closing_speed (gap 0: the blocks start touching).
+inline const Model& cached_saturated_pack(int64_t num_tris, Real closing_speed, Real gap) {
+    static std::map<std::pair<int64_t, Real>, std::unique_ptr<Model>> cache;
+    auto& slot = cache[{num_tris, gap}];
+    if (!slot) {
+        scenes::PackOptions o;
+        o.blocks_x = std::max(1, static_cast<int>(std::lround(std::sqrt(num_tris / 2.0))));
+        o.blocks_y = o.blocks_x;
+        o.brick_bond = true;
+        o.converge = true;
+        o.gap = gap;
+        // edge speed so that neighbours close at closing_speed: speed x pitch / half width
+        o.speed = closing_speed * 0.5 * (o.blocks_x + 0.5);
+        slot = std::make_unique<Model>(scenes::make_contact_pack(o));
+    }
+    return *slot;
+}
+
 inline const Model& cached_pack(int64_t num_tris, bool shuffled) {
     static std::map<std::pair<int64_t, bool>, std::unique_ptr<Model>> cache;
     auto& slot = cache[{num_tris, shuffled}];

@@ -148,8 +148,10 @@ BENCHMARK(BM_StepNoEnergyResultants)
 // per step), t_narrow (contact without detection); the node update, clears and supports are the
 // step time minus these. Also the candidate pairs and the active contacts.
 // measure: also Resultants::accumulate after every step (bodies.csv, BM_StepPackResultants).
-void step_scene(benchmark::State& st, const Model& m, int warm_up, bool measure = false) {
+void step_scene(benchmark::State& st, const Model& m, int warm_up, bool measure = false,
+                Real warm_up_time = 0) {
     State s = make_state(m, 0.5 * stable_time_step(m));
+    if (warm_up_time > 0) warm_up = static_cast<int>(std::ceil(warm_up_time / s.dt));
     for (int k = 0; k < warm_up; ++k)  // past the first steps, until the scene is in contact
         step(m, s);
     const Resultants r(m);
@@ -177,6 +179,12 @@ void step_scene(benchmark::State& st, const Model& m, int warm_up, bool measure 
     st.counters["t_narrow"] = p.narrow;
     st.counters["pairs"] = static_cast<double>(p.pairs);
     st.counters["active"] = s.contact.active_contacts;
+    // the in-contact pair: narrow-phase time per active contact (a (target, contactor body) pair
+    // with a force), and the active contacts per body (saturation of a pack)
+    st.counters["ns_per_active"] =
+        s.contact.active_contacts > 0 ? 1e9 * p.narrow / s.contact.active_contacts : 0;
+    st.counters["active_per_body"] =
+        static_cast<double>(s.contact.active_contacts) / std::max(1, m.num_bodies());
     st.counters["hash32"] = static_cast<double>(scenes::state_hash(s) & 0xffffffffu);
 }
 
@@ -186,6 +194,21 @@ void BM_StepPack(benchmark::State& st) {
 }
 
 BENCHMARK(BM_StepPack)->ArgsProduct({{20000, 200000}, {1, 2}})->Unit(benchmark::kMicrosecond);
+
+// The contact-saturated pack (issue #16 item 1): brick-bond blocks, initially touching (gap 0),
+// converging on the centre with neighbours closing at 0.5 m/s; measured after 0.2 ms, inside the
+// compression phase, when every block presses on all its neighbours: active_per_body about 10
+// (a block's 4 corners and 4 edge midpoints are targets; measured 10.6 at 0.1 ms, 9.8 at 0.5 ms,
+// 0.4 at 1 ms once the pack has rebounded). With 1 mm gaps the pack saturates less (3.8 per
+// block at 2 ms) and rebounds sooner. Args: {triangles, threads}.
+void BM_StepPackSaturated(benchmark::State& st) {
+    omp_set_num_threads(static_cast<int>(st.range(1)));
+    step_scene(st, bench::cached_saturated_pack(st.range(0), 0.5, 0.0), 0, false, 2e-4);
+}
+
+BENCHMARK(BM_StepPackSaturated)
+    ->ArgsProduct({{20000, 80000}, {1, 2}})
+    ->Unit(benchmark::kMicrosecond);
 
 // BM_StepPack plus Resultants::accumulate after every step (every node of a pack is a contact
 // node: the worst case of the measurement's per-step sums)

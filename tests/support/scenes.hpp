@@ -151,6 +151,13 @@ struct PackOptions {
     Real speed = 20;        ///< each half moves towards the other at this speed [m/s]
     bool shuffled = false;  ///< bodies added in random order (ids far apart in space)
     uint32_t seed = 2024;   ///< position and velocity jitter
+    /// brick bond: every odd row is shifted by half a pitch (masonry), so each block touches
+    /// two blocks above and two below
+    bool brick_bond = false;
+    /// converging field instead of two halves: v = -speed (p - c) / (half extent) per axis (c
+    /// the pack centre), so every gap closes at about the same time (a contact-saturated pack,
+    /// issue #16); the jitter is the same as for the halves
+    bool converge = false;
 };
 
 /// Contact-heavy pack: blocks_x x blocks_y square blocks (two triangles each, so every node is
@@ -173,9 +180,12 @@ inline Model make_contact_pack(const PackOptions& o) {
     std::vector<Vec2> body_v;  // velocity per block, in the order the blocks are added
     body_v.reserve(static_cast<size_t>(n));
     const Real pitch = o.size + o.gap;
+    const Real half_w = 0.5 * (o.blocks_x * pitch + (o.brick_bond ? 0.5 * pitch : 0.0));
+    const Real half_h = 0.5 * o.blocks_y * pitch;
     for (int k : order) {
         const int i = k % o.blocks_x, j = k / o.blocks_x;
-        const Real x0 = i * pitch + 0.25 * o.gap * u(rng);
+        const Real shift = o.brick_bond && j % 2 == 1 ? 0.5 * pitch : 0.0;
+        const Real x0 = i * pitch + shift + 0.25 * o.gap * u(rng);
         const Real y0 = j * pitch + 0.25 * o.gap * u(rng);
         const int32_t b = static_cast<int32_t>(mesh.nodes.size());
         mesh.nodes.push_back({x0, y0});
@@ -184,8 +194,16 @@ inline Model make_contact_pack(const PackOptions& o) {
         mesh.nodes.push_back({x0, y0 + o.size});
         mesh.tris.push_back({b, b + 1, b + 2});
         mesh.tris.push_back({b, b + 2, b + 3});
-        const Real vx = (2 * i < o.blocks_x ? o.speed : -o.speed) + 0.05 * o.speed * u(rng);
-        body_v.push_back({vx, 0.05 * o.speed * u(rng)});
+        if (o.converge) {
+            // jitter: 5 % of the closing speed of neighbours, speed x pitch / half extent
+            const Real jit = 0.05 * o.speed * pitch / half_w;
+            const Real cx = x0 + 0.5 * o.size - half_w, cy = y0 + 0.5 * o.size - half_h;
+            const Real vx = -o.speed * cx / half_w + jit * u(rng);
+            body_v.push_back({vx, -o.speed * cy / half_h + jit * u(rng)});
+        } else {
+            const Real vx = (2 * i < o.blocks_x ? o.speed : -o.speed) + 0.05 * o.speed * u(rng);
+            body_v.push_back({vx, 0.05 * o.speed * u(rng)});
+        }
     }
     mesh.tri_tag.assign(mesh.tris.size(), 1);
     std::vector<int32_t> all(mesh.tris.size());
