@@ -1426,8 +1426,8 @@ private:
                 more = fmt::format(" ({} other bodies of this [[body]] entry are thin too)",
                                    affected[g] - 1);
             }
-            sc.warnings.push_back(fmt::format("{}:{}:{}: {}{}", src_.name,
-                                              e->source().begin.line, e->source().begin.column,
+            sc.warnings.push_back(fmt::format("{}:{}:{}: {}{}", src_.name, e->source().begin.line,
+                                              e->source().begin.column,
                                               thin_layer_warning(m, topo_, thin[worst[g]]), more));
         }
         if (m.contact.allow_initial_overlap) return;
