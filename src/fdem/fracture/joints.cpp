@@ -14,8 +14,10 @@ namespace fdem {
 namespace {
 
 inline constexpr Real kMinLengthRatio = 1e-9;  // spec §2 guard: h < 1e-9 h_0 is an error
-// per-chunk sums: work increment, elastic energy, newly broken, softening, first bad joint
-inline constexpr size_t kSlots = 5;
+// per-chunk sums: work increment, elastic energy, newly broken, softening, first bad joint,
+// joints done by the blocked path
+inline constexpr size_t kSlots = 6;
+inline constexpr Real kInf = std::numeric_limits<Real>::infinity();
 
 }  // namespace
 
@@ -64,7 +66,7 @@ namespace {
 
 struct ChunkOut {
     Real work = 0, energy = 0;
-    int32_t broken = 0, softening = 0, bad = -1;
+    int32_t broken = 0, softening = 0, bad = -1, blocked = 0;
 };
 
 // One joint: tractions at the three Simpson points, forces f0, f1 on nodes 0, 1 (eq. 9.3; nodes
@@ -165,13 +167,195 @@ template <bool kEnergy>
     return !broken;
 }
 
+// ---- blocked path: 8 intact joints in their elastic range at a time -----------------------
+//
+// Why (docs/performance.md "Fracture joints"): the scalar per-joint body runs at ~100 cycles per
+// joint. Most joints of a run are intact and elastic, where the law (joint_point_intact) has no
+// branch; 8 such joints are computed lane by lane in plain loops the compiler vectorises (SSE2
+// in the baseline build, AVX-512 in the variant below, chosen at run time as the CST kernel).
+// Bitwise the same as the scalar path: every lane does the same IEEE operations in the same
+// order as one_joint + joint_point_intact (-ffp-contract=off, no fused multiply-add; sqrt and
+// division are correctly rounded in every width); the work, the energy and the forces are then
+// summed and scattered joint by joint in joint order, as there. A block with any joint that is
+// not intact, not of the block's law, too short or not elastic is redone by the scalar path
+// (nothing is written before the whole block qualifies). tests/unit/fracture/joints_test.cpp
+// (Joints.BlockedPathSameBits) compares all paths.
+
+inline constexpr int kLanes = 8;
+
+struct Block {
+    alignas(64) Real f0x[kLanes], f0y[kLanes], f1x[kLanes], f1y[kLanes];
+    alignas(64) Real dax[kLanes], day[kLanes], dbx[kLanes], dby[kLanes];
+    alignas(64) Real h[kLanes], o[3][kLanes], sl[3][kLanes], fs[3][kLanes];
+};
+
+// The law of an intact elastic point, lane-wise (joint_point_intact, same expressions).
+[[gnu::always_inline]] inline void intact_lane(const JointLaw& L, Real inv_h, Real o, Real s,
+                                               Real& sigma, Real& tau, Real& fs, Real& m) {
+    const Real sigma_c = L.p * std::min(o, Real(0)) * inv_h;  // eq. 9.5
+    fs = L.c - sigma_c * L.tan_phi;                           // eq. 9.7
+    const Real inv_sp = (L.half_ps * inv_h) / fs;             // eq. 9.4
+    const Real xi = std::max(o, Real(0)) * L.half_p_over_ft * inv_h;
+    const Real eta = std::fabs(s) * inv_sp;
+    sigma = sigma_c + L.ft * (xi * (2.0 - xi));        // eq. 9.5
+    tau = std::copysign(fs * (eta * (2.0 - eta)), s);  // eq. 9.8, z = 1
+    m = std::max(xi, eta);
+}
+
+// Joints j0 .. j0 + 7: true and B filled when all are intact, of one law, long enough and
+// elastic at their three points (then B holds what one_joint would compute); false otherwise.
+[[gnu::always_inline]] inline bool block_law(const Joints& J, const JointState& s,
+                                             const Vec2* __restrict x, int32_t j0, Block& B) {
+    const int32_t law = J.law[j0];
+    bool ok = true;
+    for (int l = 0; l < kLanes; ++l)
+        ok &= (s.status[j0 + l] == JointStatus::Intact) & (J.law[j0 + l] == law);
+    if (!ok) return false;
+    const JointLaw& L = J.laws[static_cast<size_t>(law)];
+    alignas(64) Real x0x[kLanes], x0y[kLanes], x1x[kLanes], x1y[kLanes], x2x[kLanes], x2y[kLanes],
+        x3x[kLanes], x3y[kLanes], len0[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+        const auto& nd = J.nodes[j0 + l];
+        x0x[l] = x[nd[0]].x, x0y[l] = x[nd[0]].y, x1x[l] = x[nd[1]].x, x1y[l] = x[nd[1]].y;
+        x2x[l] = x[nd[2]].x, x2y[l] = x[nd[2]].y, x3x[l] = x[nd[3]].x, x3y[l] = x[nd[3]].y;
+        len0[l] = J.length0[j0 + l];
+    }
+    alignas(64) Real good[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+        // eq. 9.1 (as one_joint)
+        const Real ebx = 0.5 * ((x1x[l] - x0x[l]) + (x2x[l] - x3x[l]));
+        const Real eby = 0.5 * ((x1y[l] - x0y[l]) + (x2y[l] - x3y[l]));
+        const Real h = __builtin_sqrt(ebx * ebx + eby * eby);
+        // one_joint's guard: h >= 1e-9 h_0 and finite (h >= 0 or NaN, so finite = below +inf)
+        const bool lane_ok = (h >= kMinLengthRatio * len0[l]) & (h < kInf);
+        const Real inv_h = 1.0 / h;
+        const Real ex = inv_h * ebx, ey = inv_h * eby;
+        const Real nx = -ey, ny = ex;
+        // eq. 9.2
+        const Real dax = x0x[l] - x3x[l], day = x0y[l] - x3y[l];
+        const Real dbx = x1x[l] - x2x[l], dby = x1y[l] - x2y[l];
+        const Real dmx = 0.5 * (dax + dbx), dmy = 0.5 * (day + dby);
+        const Real oa = nx * dax + ny * day, sa = ex * dax + ey * day;
+        const Real om = nx * dmx + ny * dmy, sm = ex * dmx + ey * dmy;
+        const Real ob = nx * dbx + ny * dby, sb = ex * dbx + ey * dby;
+        Real sga, taa, fsa, ma, sgm, tam, fsm, mm, sgb, tab, fsb, mb;
+        intact_lane(L, inv_h, oa, sa, sga, taa, fsa, ma);
+        intact_lane(L, inv_h, om, sm, sgm, tam, fsm, mm);
+        intact_lane(L, inv_h, ob, sb, sgb, tab, fsb, mb);
+        // std::max({ma, mm, mb}) <= 1 as one_joint (first largest, operator<)
+        Real mx = ma < mm ? mm : ma;
+        mx = mx < mb ? mb : mx;
+        good[l] = (lane_ok & (mx <= 1.0)) ? 1.0 : 0.0;
+        // eq. 9.3
+        const Real tax = sga * nx + taa * ex, tay = sga * ny + taa * ey;
+        const Real tmx = sgm * nx + tam * ex, tmy = sgm * ny + tam * ey;
+        const Real tbx = sgb * nx + tab * ex, tby = sgb * ny + tab * ey;
+        const Real mw = -(h / 6.0);
+        B.f0x[l] = mw * (tax + 2.0 * tmx);
+        B.f0y[l] = mw * (tay + 2.0 * tmy);
+        B.f1x[l] = mw * (tbx + 2.0 * tmx);
+        B.f1y[l] = mw * (tby + 2.0 * tmy);
+        B.dax[l] = dax, B.day[l] = day, B.dbx[l] = dbx, B.dby[l] = dby;
+        B.h[l] = h;
+        B.o[0][l] = oa, B.o[1][l] = om, B.o[2][l] = ob;
+        B.sl[0][l] = sa, B.sl[1][l] = sm, B.sl[2][l] = sb;
+        B.fs[0][l] = fsa, B.fs[1][l] = fsm, B.fs[2][l] = fsb;
+    }
+    Real all = 1.0;
+    for (int l = 0; l < kLanes; ++l)
+        all = std::min(all, good[l]);
+    return all == 1.0;
+}
+
+bool block_law_portable(const Joints& J, const JointState& s, const Vec2* __restrict x, int32_t j0,
+                        Block& B) {
+    return block_law(J, s, x, j0, B);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define FDEM_JOINT_AVX512 1
+__attribute__((target("avx512f,prefer-vector-width=512"))) bool block_law_avx512(
+    const Joints& J, const JointState& s, const Vec2* __restrict x, int32_t j0, Block& B) {
+    return block_law(J, s, x, j0, B);
+}
+#endif
+
+using BlockFn = bool (*)(const Joints&, const JointState&, const Vec2* __restrict, int32_t, Block&);
+
+BlockFn g_block = nullptr;  // set by choose_path (first call) or detail::set_joint_path
+
+void choose_path(detail::JointPath p) {
+    switch (p) {
+        case detail::JointPath::Scalar:
+            g_block = nullptr;
+            break;
+        case detail::JointPath::Portable:
+            g_block = &block_law_portable;
+            break;
+        case detail::JointPath::Avx512:
+#ifdef FDEM_JOINT_AVX512
+            g_block = &block_law_avx512;
+#else
+            g_block = &block_law_portable;
+#endif
+            break;
+        case detail::JointPath::Auto:
+            choose_path(detail::joint_avx512_supported() ? detail::JointPath::Avx512
+                                                         : detail::JointPath::Portable);
+            break;
+    }
+}
+
+const bool g_chosen = (choose_path(detail::JointPath::Auto), true);
+
+// The scalar commit of a qualified block, joint by joint in joint order (as one_joint).
+template <bool kEnergy, bool kScatter>
+[[gnu::always_inline]] inline void commit_block(const Joints& J, JointState& s, Vec2* __restrict f,
+                                                int32_t j0, const Block& B, ChunkOut& out) {
+    const JointLaw& L = J.laws[static_cast<size_t>(J.law[j0])];
+    for (int l = 0; l < kLanes; ++l) {
+        const int32_t j = j0 + l;
+        const Vec2 f0{B.f0x[l], B.f0y[l]}, f1{B.f1x[l], B.f1y[l]};
+        if constexpr (kEnergy) {
+            // eq. 9.18 with z = 1 (joint_point_energy reads only z and f_s of the point)
+            const Real h = B.h[l];
+            const Real w = h / 6.0;
+            JointPoint p[3];
+            for (int k = 0; k < 3; ++k)
+                p[k].fs = B.fs[k][l];
+            out.energy += w * (joint_point_energy(L, h, B.o[0][l], B.sl[0][l], p[0]) +
+                               4.0 * joint_point_energy(L, h, B.o[1][l], B.sl[1][l], p[1]) +
+                               joint_point_energy(L, h, B.o[2][l], B.sl[2][l], p[2]));
+        }
+        // eq. 9.17 (as one_joint)
+        auto& fp = s.f_prev[j];
+        auto& dp = s.d_prev[j];
+        const Real dax = B.dax[l], day = B.day[l], dbx = B.dbx[l], dby = B.dby[l];
+        const Real dw = -0.5 * (((fp[0] + f0.x) * (dax - dp[0]) + (fp[1] + f0.y) * (day - dp[1])) +
+                                ((fp[2] + f1.x) * (dbx - dp[2]) + (fp[3] + f1.y) * (dby - dp[3])));
+        s.work[j] += dw;
+        out.work += dw;
+        fp = {f0.x, f0.y, f1.x, f1.y};
+        dp = {dax, day, dbx, dby};
+        if constexpr (kScatter) {
+            const auto& nd = J.nodes[j];
+            f[nd[0]] += f0;
+            f[nd[1]] += f1;
+            f[nd[2]] -= f1;
+            f[nd[3]] -= f0;
+        } else {
+            s.jf[j] = {f0, f1};
+        }
+    }
+}
+
 template <bool kEnergy, bool kScatter>
 void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* __restrict f,
                int32_t c, int64_t step) {
     const int32_t begin = c * kJointChunk;
     const int32_t end = std::min(J.num_joints(), begin + kJointChunk);
     ChunkOut out;
-    for (int32_t j = begin; j < end; ++j) {
+    const auto scalar = [&](int32_t j) {
         Vec2 f0, f1;
         const bool loaded = one_joint<kEnergy>(J, s, x, j, step, f0, f1, out);
         if constexpr (kScatter) {
@@ -185,13 +369,29 @@ void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
         } else {
             s.jf[j] = {f0, f1};
         }
+    };
+    int32_t j = begin;
+    if (const BlockFn block = g_block) {
+        Block B;
+        for (; j + kLanes <= end; j += kLanes) {
+            if (block(J, s, x, j, B)) {
+                commit_block<kEnergy, kScatter>(J, s, f, j, B, out);
+                out.blocked += kLanes;
+            } else {
+                for (int l = 0; l < kLanes; ++l)
+                    scalar(j + l);
+            }
+        }
     }
+    for (; j < end; ++j)
+        scalar(j);
     Real* slot = s.chunk_sums.data() + kSlots * static_cast<size_t>(c);
     slot[0] = out.work;
     slot[1] = out.energy;
     slot[2] = out.broken;
     slot[3] = out.softening;
     slot[4] = out.bad;
+    slot[5] = out.blocked;
 }
 
 template <bool kScatter>
@@ -204,6 +404,23 @@ void run_chunk(const Joints& J, JointState& s, const Vec2* x, Vec2* f, int32_t c
 }
 
 }  // namespace
+
+namespace detail {
+
+bool joint_avx512_supported() {
+#ifdef FDEM_JOINT_AVX512
+    static const bool ok = __builtin_cpu_supports("avx512f");
+    return ok;
+#else
+    return false;
+#endif
+}
+
+void set_joint_path(JointPath p) {
+    choose_path(p);
+}
+
+}  // namespace detail
 
 JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, std::span<Vec2> f,
                        bool need_energy, int64_t step, double time) {
@@ -259,6 +476,7 @@ JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, 
         out.newly_broken += static_cast<int32_t>(slot[2]);
         out.softening += static_cast<int32_t>(slot[3]);
         if (bad < 0 && slot[4] >= 0) bad = static_cast<int32_t>(slot[4]);
+        out.blocked += static_cast<int32_t>(slot[5]);
     }
     if (bad >= 0) {
         throw SimulationError(step, time, "joint " + std::to_string(bad),

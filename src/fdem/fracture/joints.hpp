@@ -62,6 +62,7 @@ struct JointPass {
     Real fracture = 0;        ///< W_frac = work - E_joint (eq. 9.19), when need_energy
     int32_t newly_broken = 0;
     int32_t softening = 0;  ///< joints softening (not broken) after the call
+    int32_t blocked = 0;    ///< joints computed by the blocked path (diagnostic; same results)
 };
 
 /// Joints per chunk of the kernel: fixed, so the energy sums do not depend on the thread count.
@@ -76,6 +77,18 @@ inline constexpr int32_t kJointChunk = 2048;
 /// throws SimulationError(step, time, "joint J").
 JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, std::span<Vec2> f,
                        bool need_energy, int64_t step = 0, double time = 0);
+
+namespace detail {
+
+/// Which code computes blocks of 8 intact elastic joints in joint_forces (same bits on every
+/// path): Auto (the default) picks Avx512 when the CPU has AVX-512F, else Portable; Scalar turns
+/// the blocked path off. For tests and benchmarks; not thread-safe against a running kernel.
+enum class JointPath { Auto, Scalar, Portable, Avx512 };
+void set_joint_path(JointPath p);
+/// true when this build has the AVX-512 variant and the CPU runs it.
+bool joint_avx512_supported();
+
+}  // namespace detail
 
 /// Per-node Gershgorin row sum of the joint stiffness, sum over joints of max(p, p_s) (theory eq.
 /// 9.16), added to k (size >= num_nodes).
