@@ -186,8 +186,28 @@ inline constexpr int kLanes = 8;
 struct Block {
     alignas(64) Real f0x[kLanes], f0y[kLanes], f1x[kLanes], f1y[kLanes];
     alignas(64) Real dax[kLanes], day[kLanes], dbx[kLanes], dby[kLanes];
-    alignas(64) Real h[kLanes], o[3][kLanes], sl[3][kLanes], fs[3][kLanes];
+    alignas(64) Real dw[kLanes];  ///< work increment (eq. 9.17)
+    alignas(64) Real en[kLanes];  ///< w (psi_a + 4 psi_m + psi_b) (eq. 9.18), kEnergy only
 };
+
+// joint_point_energy for an intact point (z = 1) lane-wise, both branches evaluated and one
+// selected (same expressions, same bits).
+[[gnu::always_inline]] inline Real intact_energy_lane(const JointLaw& L, Real h, Real o, Real s,
+                                                      Real fs) {
+    const Real z = 1.0;
+    const Real psi_c = 0.5 * L.p * o * o / h;
+    const Real op = 2.0 * h * L.ft / L.p;
+    const Real xi = o / op;
+    const Real psi_t = xi <= 1.0 ? z * L.ft * op * (xi * xi - xi * xi * xi / 3.0)
+                                 : z * L.ft * ((2.0 / 3.0) * op + (o - op));
+    Real psi = o < 0 ? psi_c : psi_t;
+    const Real sp = 2.0 * h * fs / L.ps;
+    const Real abs_s = std::fabs(s);
+    const Real eta = abs_s / sp;
+    psi += eta <= 1.0 ? z * fs * sp * (eta * eta - eta * eta * eta / 3.0)
+                      : z * fs * ((2.0 / 3.0) * sp + (abs_s - sp));
+    return psi;
+}
 
 // The law of an intact elastic point, lane-wise (joint_point_intact, same expressions).
 [[gnu::always_inline]] inline void intact_lane(const JointLaw& L, Real inv_h, Real o, Real s,
@@ -204,6 +224,7 @@ struct Block {
 
 // Joints j0 .. j0 + 7: true and B filled when all are intact, of one law, long enough and
 // elastic at their three points (then B holds what one_joint would compute); false otherwise.
+template <bool kEnergy>
 [[gnu::always_inline]] inline bool block_law(const Joints& J, const JointState& s,
                                              const Vec2* __restrict x, int32_t j0, Block& B) {
     const int32_t law = J.law[j0];
@@ -219,6 +240,13 @@ struct Block {
         x0x[l] = x[nd[0]].x, x0y[l] = x[nd[0]].y, x1x[l] = x[nd[1]].x, x1y[l] = x[nd[1]].y;
         x2x[l] = x[nd[2]].x, x2y[l] = x[nd[2]].y, x3x[l] = x[nd[3]].x, x3y[l] = x[nd[3]].y;
         len0[l] = J.length0[j0 + l];
+    }
+    alignas(64) Real fp[4][kLanes], dp[4][kLanes];  // last forces and separations (eq. 9.17)
+    for (int l = 0; l < kLanes; ++l) {
+        const auto& f4 = s.f_prev[j0 + l];
+        const auto& d4 = s.d_prev[j0 + l];
+        for (int k = 0; k < 4; ++k)
+            fp[k][l] = f4[k], dp[k][l] = d4[k];
     }
     alignas(64) Real good[kLanes];
     for (int l = 0; l < kLanes; ++l) {
@@ -256,10 +284,18 @@ struct Block {
         B.f1x[l] = mw * (tbx + 2.0 * tmx);
         B.f1y[l] = mw * (tby + 2.0 * tmy);
         B.dax[l] = dax, B.day[l] = day, B.dbx[l] = dbx, B.dby[l] = dby;
-        B.h[l] = h;
-        B.o[0][l] = oa, B.o[1][l] = om, B.o[2][l] = ob;
-        B.sl[0][l] = sa, B.sl[1][l] = sm, B.sl[2][l] = sb;
-        B.fs[0][l] = fsa, B.fs[1][l] = fsm, B.fs[2][l] = fsb;
+        // eq. 9.17 (as one_joint)
+        B.dw[l] =
+            -0.5 *
+            (((fp[0][l] + B.f0x[l]) * (dax - dp[0][l]) + (fp[1][l] + B.f0y[l]) * (day - dp[1][l])) +
+             ((fp[2][l] + B.f1x[l]) * (dbx - dp[2][l]) + (fp[3][l] + B.f1y[l]) * (dby - dp[3][l])));
+        if constexpr (kEnergy) {
+            // eq. 9.18 (as one_joint: w = h/6, weights 1, 4, 1)
+            const Real w = h / 6.0;
+            B.en[l] = w * (intact_energy_lane(L, h, oa, sa, fsa) +
+                           4.0 * intact_energy_lane(L, h, om, sm, fsm) +
+                           intact_energy_lane(L, h, ob, sb, fsb));
+        }
     }
     Real all = 1.0;
     for (int l = 0; l < kLanes; ++l)
@@ -267,36 +303,41 @@ struct Block {
     return all == 1.0;
 }
 
+template <bool kEnergy>
 bool block_law_portable(const Joints& J, const JointState& s, const Vec2* __restrict x, int32_t j0,
                         Block& B) {
-    return block_law(J, s, x, j0, B);
+    return block_law<kEnergy>(J, s, x, j0, B);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define FDEM_JOINT_AVX512 1
+template <bool kEnergy>
 __attribute__((target("avx512f,prefer-vector-width=512"))) bool block_law_avx512(
     const Joints& J, const JointState& s, const Vec2* __restrict x, int32_t j0, Block& B) {
-    return block_law(J, s, x, j0, B);
+    return block_law<kEnergy>(J, s, x, j0, B);
 }
 #endif
 
 using BlockFn = bool (*)(const Joints&, const JointState&, const Vec2* __restrict, int32_t, Block&);
 
-BlockFn g_block = nullptr;  // set by choose_path (first call) or detail::set_joint_path
+// set by choose_path (at load) or detail::set_joint_path; [kEnergy]
+BlockFn g_block[2] = {nullptr, nullptr};
 
 void choose_path(detail::JointPath p) {
     switch (p) {
         case detail::JointPath::Scalar:
-            g_block = nullptr;
+            g_block[0] = g_block[1] = nullptr;
             break;
         case detail::JointPath::Portable:
-            g_block = &block_law_portable;
+            g_block[0] = &block_law_portable<false>;
+            g_block[1] = &block_law_portable<true>;
             break;
         case detail::JointPath::Avx512:
 #ifdef FDEM_JOINT_AVX512
-            g_block = &block_law_avx512;
+            g_block[0] = &block_law_avx512<false>;
+            g_block[1] = &block_law_avx512<true>;
 #else
-            g_block = &block_law_portable;
+            choose_path(detail::JointPath::Portable);
 #endif
             break;
         case detail::JointPath::Auto:
@@ -312,31 +353,14 @@ const bool g_chosen = (choose_path(detail::JointPath::Auto), true);
 template <bool kEnergy, bool kScatter>
 [[gnu::always_inline]] inline void commit_block(const Joints& J, JointState& s, Vec2* __restrict f,
                                                 int32_t j0, const Block& B, ChunkOut& out) {
-    const JointLaw& L = J.laws[static_cast<size_t>(J.law[j0])];
     for (int l = 0; l < kLanes; ++l) {
         const int32_t j = j0 + l;
         const Vec2 f0{B.f0x[l], B.f0y[l]}, f1{B.f1x[l], B.f1y[l]};
-        if constexpr (kEnergy) {
-            // eq. 9.18 with z = 1 (joint_point_energy reads only z and f_s of the point)
-            const Real h = B.h[l];
-            const Real w = h / 6.0;
-            JointPoint p[3];
-            for (int k = 0; k < 3; ++k)
-                p[k].fs = B.fs[k][l];
-            out.energy += w * (joint_point_energy(L, h, B.o[0][l], B.sl[0][l], p[0]) +
-                               4.0 * joint_point_energy(L, h, B.o[1][l], B.sl[1][l], p[1]) +
-                               joint_point_energy(L, h, B.o[2][l], B.sl[2][l], p[2]));
-        }
-        // eq. 9.17 (as one_joint)
-        auto& fp = s.f_prev[j];
-        auto& dp = s.d_prev[j];
-        const Real dax = B.dax[l], day = B.day[l], dbx = B.dbx[l], dby = B.dby[l];
-        const Real dw = -0.5 * (((fp[0] + f0.x) * (dax - dp[0]) + (fp[1] + f0.y) * (day - dp[1])) +
-                                ((fp[2] + f1.x) * (dbx - dp[2]) + (fp[3] + f1.y) * (dby - dp[3])));
-        s.work[j] += dw;
-        out.work += dw;
-        fp = {f0.x, f0.y, f1.x, f1.y};
-        dp = {dax, day, dbx, dby};
+        if constexpr (kEnergy) out.energy += B.en[l];
+        s.work[j] += B.dw[l];
+        out.work += B.dw[l];
+        s.f_prev[j] = {f0.x, f0.y, f1.x, f1.y};
+        s.d_prev[j] = {B.dax[l], B.day[l], B.dbx[l], B.dby[l]};
         if constexpr (kScatter) {
             const auto& nd = J.nodes[j];
             f[nd[0]] += f0;
@@ -371,7 +395,7 @@ void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
         }
     };
     int32_t j = begin;
-    if (const BlockFn block = g_block) {
+    if (const BlockFn block = g_block[kEnergy ? 1 : 0]) {
         Block B;
         for (; j + kLanes <= end; j += kLanes) {
             if (block(J, s, x, j, B)) {
