@@ -8,8 +8,9 @@ from conftest import example
 
 def test_main_thread_runs_while_run_is_busy():
     sim = fdem.Simulation.from_toml(example("03_contact_slide"))
-    # long enough to be seen (about 1 s of stepping at 1 thread)
-    steps = 3000
+    # long enough to be seen: 40000 demo steps take about 0.8 s at 20 us per step on one core
+    # (3000 steps, 0.06 s on a quiet machine, were too short to tell)
+    steps = 40000
     worker = threading.Thread(target=lambda: sim.run(steps=steps))
     ticks = 0
     t0 = time.perf_counter()
