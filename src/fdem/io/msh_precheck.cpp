@@ -126,7 +126,7 @@ public:
 
 private:
     const std::string& path_;
-    std::string d_;  ///< the whole file
+    std::string d_;                      ///< the whole file
     MshPhysicalNames* names_ = nullptr;  ///< collects the physical names if not null
     int name_sections_ = 0;
     size_t pos_ = 0;

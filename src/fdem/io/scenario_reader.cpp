@@ -39,9 +39,9 @@ using io::Fields;
 using io::SourceText;
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kTopKeys = {"simulation", "output",  "material", "body",
-                                           "boundary",   "load",    "kick",     "damping",
-                                           "contact",    "checks",  "probe"};
+const std::vector<std::string> kTopKeys = {"simulation", "output", "material", "body",
+                                           "boundary",   "load",   "kick",     "damping",
+                                           "contact",    "checks", "probe"};
 const std::vector<std::string> kContactLawKeys = {"penalty",  "alpha",
                                                   "beta",     "length_scale",
                                                   "damping",  "damp_normal_only",
@@ -108,17 +108,17 @@ Real round_down_3(Real v) {
 struct BodyEntry {
     std::string name;
     const toml::table* table = nullptr;
-    int mesh = 0;                  ///< index into the mesh cache
-    bool fixed = false;            ///< fixed = true
-    MeshNodeMap node_map;          ///< mesh node -> model node (kNone if not in this body)
-    BodyId body_begin = 0;         ///< the bodies made from this entry: [body_begin, body_end)
-    BodyId body_end = 0;           ///< (valid until finalize_model; renumbering keeps them)
+    int mesh = 0;           ///< index into the mesh cache
+    bool fixed = false;     ///< fixed = true
+    MeshNodeMap node_map;   ///< mesh node -> model node (kNone if not in this body)
+    BodyId body_begin = 0;  ///< the bodies made from this entry: [body_begin, body_end)
+    BodyId body_end = 0;    ///< (valid until finalize_model; renumbering keeps them)
 };
 
 struct LoadedMesh {
     std::string path;
     Real size = 0;
-    int order = 1;  ///< 2: a .geo meshed with 6-node triangles (element = "composite")
+    int order = 1;           ///< 2: a .geo meshed with 6-node triangles (element = "composite")
     bool in_memory = false;  ///< given to load_scenario_from_string, not read from a file
     MeshData data;
     std::vector<int> tri_owner;  ///< body entry using each triangle, -1 if none
@@ -254,9 +254,8 @@ private:
         }
         // not given: 0 here, chosen by choose_dt() (0.5 of the element limit, 0.2 of the
         // contact limit, docs/theory.md §6.9)
-        run.dt_fraction = f.has("dt_fraction")
-                              ? f.real("dt_fraction", 0.5, "", {0.0, 1.0, true, false})
-                              : 0.0;
+        run.dt_fraction =
+            f.has("dt_fraction") ? f.real("dt_fraction", 0.5, "", {0.0, 1.0, true, false}) : 0.0;
         sc.model.gravity = f.vec2("gravity", Vec2{0, 0}, "m/s^2");
     }
 
@@ -613,8 +612,8 @@ private:
             opt.velocity_gradient = Mat2{g[0][0], g[0][1], g[1][0], g[1][1]};
         }
         const Mat2& G = opt.velocity_gradient;
-        const bool field = opt.angular_velocity != 0 || G.xx != 0 || G.xy != 0 || G.yx != 0 ||
-                           G.yy != 0;
+        const bool field =
+            opt.angular_velocity != 0 || G.xx != 0 || G.xy != 0 || G.yx != 0 || G.yy != 0;
         if (const toml::node* n = f.node("origin")) {
             if (!field) {
                 f.fail(*n, "origin",
@@ -930,7 +929,8 @@ private:
             for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
                 const auto& n = m.tri_nodes[static_cast<size_t>(t)];
                 for (int k = 0; k < 3; ++k) {
-                    const NodeId p = n[static_cast<size_t>(k)], q = n[static_cast<size_t>((k + 1) % 3)];
+                    const NodeId p = n[static_cast<size_t>(k)],
+                                 q = n[static_cast<size_t>((k + 1) % 3)];
                     auto& e = edges[{std::min(p, q), std::max(p, q)}];
                     ++e.first;
                     e.second = {p, q};
@@ -942,7 +942,8 @@ private:
             const NodeId q = entry.node_map[mq];
             if (p == kNone || q == kNone) return;  // another part of the mesh
             const auto it = edges.find({std::min(p, q), std::max(p, q)});
-            const Vec2 a = mesh.nodes[static_cast<size_t>(mp)], c = mesh.nodes[static_cast<size_t>(mq)];
+            const Vec2 a = mesh.nodes[static_cast<size_t>(mp)],
+                       c = mesh.nodes[static_cast<size_t>(mq)];
             if (it == edges.end() || it->second.first != 1) {
                 f.fail(*f.node("group"), "group",
                        fmt::format("the edge from ({:g}, {:g}) to ({:g}, {:g}) m of physical group "
@@ -955,8 +956,8 @@ private:
             }
             const std::array<NodeId, 2> d = it->second.second;
             ld.edges.push_back(d);
-            ld.edge_length0.push_back(norm(m.node_x0[static_cast<size_t>(d[1])] -
-                                           m.node_x0[static_cast<size_t>(d[0])]));
+            ld.edge_length0.push_back(
+                norm(m.node_x0[static_cast<size_t>(d[1])] - m.node_x0[static_cast<size_t>(d[0])]));
         };
         for (const size_t k : lm.named(group)) {
             const PhysicalGroup& g = mesh.groups[k];
@@ -1034,8 +1035,8 @@ private:
             f.set_context(fmt::format("probe \"{}\"", p.name));
             if (const auto it = first_line.find(p.name); it != first_line.end()) {
                 f.fail(*f.node("name"), "name",
-                       fmt::format("duplicate probe name \"{}\" (first defined on line {})",
-                                   p.name, it->second));
+                       fmt::format("duplicate probe name \"{}\" (first defined on line {})", p.name,
+                                   it->second));
             }
             first_line[p.name] = f.location("name").line;
             if (f.has("position") && f.has("group")) {
@@ -1097,8 +1098,7 @@ private:
             f.set_context(
                 fmt::format("kick of body \"{}\"", bodies_[static_cast<size_t>(k.group)].name));
             k.time = f.real("time", std::nullopt, "s", Bounds::non_negative());
-            kick_entries_.push_back(
-                {f.location("time"), f.full_key("time"), f.context(), k.time});
+            kick_entries_.push_back({f.location("time"), f.full_key("time"), f.context(), k.time});
             k.velocity = f.vec2("velocity", std::nullopt, "m/s");
             f.components("components", std::pair{true, true}, k.has_x, k.has_y);
             m.kicks.push_back(k);
@@ -1156,16 +1156,15 @@ private:
         Model& m = sc.model;
         const toml::table* t = sub_table(src_, root, "contact");
         if (!t) {
-            const bool movable =
-                std::any_of(m.bodies.begin(), m.bodies.end(), [](const Body& b) { return !b.fixed; });
+            const bool movable = std::any_of(m.bodies.begin(), m.bodies.end(),
+                                             [](const Body& b) { return !b.fixed; });
             const bool on = m.bodies.size() >= 2 && movable;
             m.contact.algorithm = on ? ContactAlgorithm::Smooth : ContactAlgorithm::None;
             sc.contact_default = true;
             return;
         }
-        std::vector<std::string> keys = {"algorithm", "buffer",
-                                         "two_way",   "scaling",
-                                         "pair",      "composite_special_case",
+        std::vector<std::string> keys = {"algorithm",    "buffer",         "two_way",
+                                         "scaling",      "pair",           "composite_special_case",
                                          "edge_targets", "initial_overlap"};
         keys.insert(keys.end(), kContactLawKeys.begin(), kContactLawKeys.end());
         Fields f(src_, *t, "[contact]", "contact", keys);
@@ -1302,8 +1301,9 @@ private:
                     std::min(kDefaultElementFraction * element, kDefaultContactFraction * contact);
                 run.dt_fraction = run.dt / stable;
             }
-            run.dt_cause = fmt::format("dt = \"auto\" = {:.3g} x the stable limit {:.4g} s set by {}",
-                                       run.dt_fraction, stable, limit);
+            run.dt_cause =
+                fmt::format("dt = \"auto\" = {:.3g} x the stable limit {:.4g} s set by {}",
+                            run.dt_fraction, stable, limit);
             return;
         }
         run.dt_cause = fmt::format("dt = {:g} s is given in [simulation]", run.dt);
@@ -1412,8 +1412,8 @@ private:
         for (size_t k = 0; k < thin.size(); ++k) {
             const auto g = static_cast<size_t>(m.bodies[thin[k].body].group);
             ++affected[g];
-            if (worst[g] == thin.size() || thin[k].near_dist / thin[k].dist >
-                                               thin[worst[g]].near_dist / thin[worst[g]].dist) {
+            if (worst[g] == thin.size() ||
+                thin[k].near_dist / thin[k].dist > thin[worst[g]].near_dist / thin[worst[g]].dist) {
                 worst[g] = k;
             }
         }
@@ -1482,12 +1482,13 @@ void check_step_count(const RunSettings& run, const SourceLocation& where, const
                       const std::string& source_line) {
     const Real steps = planned_steps(run);
     if (!(run.end_time >= run.dt)) {
-        throw InputError(where, key,
-                         fmt::format("end_time = {:g} s is shorter than one time step ({}): the "
-                                     "run would take {:g} step(s); expected end_time >= dt = {:.4g} "
-                                     "s; check the units of end_time, youngs_modulus and density",
-                                     run.end_time, run.dt_cause, steps > 0 ? steps : 0.0, run.dt),
-                         source_line);
+        throw InputError(
+            where, key,
+            fmt::format("end_time = {:g} s is shorter than one time step ({}): the "
+                        "run would take {:g} step(s); expected end_time >= dt = {:.4g} "
+                        "s; check the units of end_time, youngs_modulus and density",
+                        run.end_time, run.dt_cause, steps > 0 ? steps : 0.0, run.dt),
+            source_line);
     }
     if (!(steps <= run.max_steps)) {
         throw InputError(
@@ -1520,10 +1521,11 @@ Scenario load_scenario_from_string(const std::string& text, const std::string& n
 Scenario load_scenario(const std::string& path) {
     std::error_code dir_ec;
     if (fs::is_directory(path, dir_ec)) {
-        throw InputError({path, 0, 0}, "",
-                         fmt::format("cannot read scenario file '{}': it is a directory; expected "
-                                     "a TOML scenario file (e.g. {})",
-                                     path, (fs::path(path) / "scenario.toml").lexically_normal().string()));
+        throw InputError(
+            {path, 0, 0}, "",
+            fmt::format("cannot read scenario file '{}': it is a directory; expected "
+                        "a TOML scenario file (e.g. {})",
+                        path, (fs::path(path) / "scenario.toml").lexically_normal().string()));
     }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
