@@ -361,7 +361,8 @@ py::dict run_impl(PySimulation& ps, double until, const py::object& callback, in
             return true;
         };
         py::gil_scoped_release release;
-        res = ps.sim.run(until, cb, stride);
+        // a Python callback may read sim.energy: evaluate every energy on its steps
+        res = ps.sim.run(until, cb, stride, has_cb);
     }
     if (py_error) std::rethrow_exception(py_error);
     py::dict d;

@@ -165,7 +165,7 @@ struct Simulation::Impl {
     /// One step of the loop: energies where they are read, step, checks, output and checkpoint
     /// when due. total: steps to end_time (final frame and checkpoint); target: last step of
     /// this run. Returns whether a stop was requested (the checkpoint is then written).
-    bool advance(int64_t total, int64_t target, bool all_energy) {
+    bool advance(int64_t total, int64_t target, bool all_energy, int64_t energy_every = 0) {
         State& s = state;
         const Model& m = model;
         const bool out = !out_dir.empty();
@@ -176,6 +176,7 @@ struct Simulation::Impl {
         const Real t_next = s.time + s.dt;
         s.need_energy = all_energy || s.step == 0 || (s.step + 1) % 16 == 0 ||
                         s.step + 1 == total || s.step + 1 == target ||
+                        (energy_every > 0 && (s.step + 1) % energy_every == 0) ||
                         (out && t_next >= prog.next_output - 0.5 * s.dt) ||
                         (ck && t_next >= next_checkpoint - 0.5 * s.dt);
         fdem::step(m, s);
@@ -360,7 +361,8 @@ void Simulation::step() {
     }
 }
 
-RunResult Simulation::run(Real until, const StepCallback& callback, int64_t every) {
+RunResult Simulation::run(Real until, const StepCallback& callback, int64_t every,
+                          bool callback_reads_energy) {
     if (every < 1) throw std::invalid_argument("Simulation::run: every must be >= 1");
     Impl& I = *impl_;
     struct ClearStop {
@@ -374,7 +376,8 @@ RunResult Simulation::run(Real until, const StepCallback& callback, int64_t ever
     RunResult res;
     try {
         while (s.step < target) {
-            const bool stop = I.advance(total, target, false);
+            const bool stop =
+                I.advance(total, target, false, callback && callback_reads_energy ? every : 0);
             ++res.steps;
             if (stop) {
                 res.status = RunStatus::Stopped;
