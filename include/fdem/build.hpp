@@ -2,6 +2,7 @@
 // lumped masses, boundary-condition node arrays and contact topology.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
@@ -33,6 +34,18 @@ struct BodyOptions {
     /// Cst for 3-node ones. Cst on a 6-node mesh splits every 6-node triangle into its four
     /// sub-triangles as plain CSTs; Composite6 on a 3-node mesh is an InputError.
     std::optional<ElementKind> element;
+    /// Discrete fracture (spec fracture.md §1.2, §10; docs/theory.md §9). With fracture, the
+    /// jointed edges are: the internal edges between two triangles of fracture_tris (mesh
+    /// triangle ids; empty = every triangle of the entry, unless joint_edges is given), plus the
+    /// mesh edges joint_edges (mesh node pairs, e.g. of a curve group), plus prebroken_edges.
+    /// Around every mesh vertex the fan of triangles is cut at jointed edges; each run gets its
+    /// own node copy (Model::node_vertex maps copies to the vertex), each jointed edge a joint
+    /// with the material's law (Material::fracture). prebroken_edges are broken at t = 0
+    /// (Model::prebroken_joints). Connected components (bodies) are those of the mesh.
+    bool fracture = false;
+    std::vector<int32_t> fracture_tris;
+    std::vector<std::array<int32_t, 2>> joint_edges;
+    std::vector<std::array<int32_t, 2>> prebroken_edges;
 };
 
 /// Append the triangles tri_ids of mesh (indices into mesh.tris) as one or more bodies: every

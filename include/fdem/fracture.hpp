@@ -1,9 +1,12 @@
 // Parameters of the cohesive joints of discrete fracture (docs/theory.md §9, spec fracture.md
-// §3, §10). Public because a scenario or the Python module will fill them per material; the joint
-// arrays and the kernel are internal (src/fdem/fracture/).
+// §3, §10), the joint arrays (Joints, in Model) and their history (JointState, in State). Public
+// because the scenario reader, Model, State and the Python module use them; the law's arithmetic
+// and the kernel are internal (src/fdem/fracture/).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <vector>
 
 #include "fdem/math.hpp"
 
@@ -52,5 +55,59 @@ Real joint_effective_modulus(Real youngs_modulus, Real penalty, Real c_m = 2.0);
 /// Largest joint length for which the softening branch is at least 2 o_p long with the "exact"
 /// rule: h_max = p G_I / (4 I_z f_t^2) (theory eq. 9.14).
 Real joint_max_length(const JointMaterial& jm);
+
+/// Constants of one JointMaterial derived once (make_joint_law), read by the kernel.
+struct JointLaw {
+    Real ft = 0, c = 0, tan_phi = 0;  ///< f_t, c [Pa], tan(phi)
+    Real p = 0, ps = 0;               ///< penalties p, p_s [Pa]
+    Real GI = 0, GII = 0;             ///< fracture energies [J/m^2]
+    Real Iz = 0;                      ///< integral of z over [0, 1] (eq. 9.11)
+    Real half_p_over_ft = 0;          ///< p/(2 f_t): xi = o p/(2 h f_t) = o/o_p (eq. 9.4)
+    Real half_ps = 0;                 ///< p_s/2: 1/s_p = (p_s/2)/(h f_s) (eq. 9.4)
+    SofteningCurve curve = SofteningCurve::EvansMarathe;
+    SofteningLength length_rule = SofteningLength::Exact;
+    int32_t failure_points = 2;
+};
+
+/// Joints per chunk of the kernel: fixed, so the energy sums do not depend on the thread count.
+inline constexpr int32_t kJointChunk = 2048;
+
+/// Joint status (spec §0).
+enum class JointStatus : uint8_t { Intact = 0, Softening = 1, Broken = 2 };
+
+/// Mode label at breaking (spec §3.9): I if only D_n reached 1, II if only D_s, mixed otherwise.
+enum class JointMode : uint8_t { None = 0, I = 1, II = 2, Mixed = 3 };
+
+/// Immutable part: topology and parameters of N joints (model side).
+/// Node order (theory eq. 9.1): 0, 1 on triangle A in A's counter-clockwise order, 3, 2 on B;
+/// 0 faces 3 and 1 faces 2 in the reference configuration.
+struct Joints {
+    std::vector<std::array<NodeId, 4>> nodes;
+    std::vector<Real> length0;   ///< reference length h_0 [m]
+    std::vector<int32_t> law;    ///< index into laws
+    std::vector<JointLaw> laws;  ///< one per joint material
+    // gather lists (finalize_joints): for every node with joints, in node order, its entries
+    // 4 j + k (joint j, local node k), ascending in j
+    std::vector<NodeId> gather_node;
+    std::vector<int32_t> gather_begin;  ///< gather_node.size() + 1 offsets into gather_entry
+    std::vector<int32_t> gather_entry;
+    int32_t num_joints() const { return static_cast<int32_t>(nodes.size()); }
+};
+
+/// Mutable part: per-joint history (state side) and the kernel's scratch.
+struct JointState {
+    std::vector<std::array<Real, 3>> d_max;  ///< frozen damage per point (spec §3.8)
+    std::vector<JointStatus> status;
+    std::vector<uint8_t> mode_bits;  ///< 1: a point reached D_n >= 1, 2: D_s >= 1, 4: neither alone
+    std::vector<JointMode> mode;     ///< mode at breaking (None while not broken)
+    std::vector<int64_t> break_step;          ///< step argument of the call that broke it, -1
+    std::vector<Real> work;                   ///< W_J: work done on the joint (eq. 9.17) [J/m]
+    std::vector<std::array<Real, 4>> f_prev;  ///< forces on nodes 0, 1 of the last call
+    std::vector<std::array<Real, 4>> d_prev;  ///< end separations delta_a, delta_b of the last call
+    Real total_work = 0;                      ///< sum over all calls of the work increments
+    // scratch (sized once by make_joint_state)
+    std::vector<std::array<Vec2, 2>> jf;  ///< per-joint forces on nodes 0, 1 (parallel path)
+    std::vector<Real> chunk_sums;
+};
 
 }  // namespace fdem

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "fdem/fracture.hpp"
 #include "fdem/math.hpp"
 
 namespace fdem {
@@ -19,6 +20,10 @@ struct Material {
     PlaneMode plane = PlaneMode::Strain;
     Real viscosity = 0;      ///< eta [Pa s] of the viscous stress eta*D (theory §2.3), >= 0
     Real damping_ratio = 0;  ///< xi [-]: adds eta = 2 h xi sqrt(E rho) per element (theory §2.3)
+    /// [material.fracture] (spec fracture.md §10): the joint parameters of bodies of this
+    /// material that have fracture; has_fracture = false without that table
+    bool has_fracture = false;
+    JointMaterial fracture;
     // derived at build time (theory eq. 2.5): effective 2-D Lame constants
     Real lambda = 0;  ///< [Pa]; for plane stress the reduced 2 lambda mu / (lambda + 2 mu)
     Real mu = 0;      ///< shear modulus [Pa]

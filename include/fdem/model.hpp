@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fdem/contact_model.hpp"
+#include "fdem/fracture.hpp"
 #include "fdem/material.hpp"
 #include "fdem/math.hpp"
 
@@ -41,8 +42,12 @@ struct Body {
     int32_t material = 0;  ///< index into Model::materials
     bool fixed = false;    ///< every node held at its initial position
     ElementKind element = ElementKind::Cst;  ///< formulation of the triangles (see above)
-    NodeId node_begin = 0, node_end = 0;     ///< nodes [begin, end)
-    TriId tri_begin = 0, tri_end = 0;        ///< triangles [begin, end)
+    /// Has cohesive joints (issue #14, spec fracture.md §1.2): the triangles on either side of a
+    /// jointed edge have their own node copies, Model::joints couples them; the body is one
+    /// contact body whose cracks contact themselves by rule X (docs/theory.md §9)
+    bool fracture = false;
+    NodeId node_begin = 0, node_end = 0;  ///< nodes [begin, end)
+    TriId tri_begin = 0, tri_end = 0;     ///< triangles [begin, end)
 };
 
 /// Prescribed velocity components on a node set (a "fixed" component has velocity 0).
@@ -148,6 +153,16 @@ struct Model {
     std::vector<Load> loads;  ///< external loads (finalize_model() sets their slot_begin)
     MassDamping mass_damping;
     Vec2 gravity;  ///< [m/s^2]
+
+    /// Discrete fracture (docs/theory.md §9, spec fracture.md): the cohesive joints (4 node
+    /// copies each, reference length, law; empty without fracture) and, per node, the node that
+    /// represents its original mesh vertex (the smallest copy id of that vertex; node_vertex[n]
+    /// == n for a node that was never split). Empty when no body has fracture.
+    Joints joints;
+    std::vector<NodeId> node_vertex;
+    /// Joints broken at t = 0 (pre-broken curves: notches, DFN), ascending ids; make_state() marks
+    /// them broken with zero dissipation.
+    std::vector<int32_t> prebroken_joints;
 
     ContactModel contact;              ///< contact parameters (contact_model.hpp)
     ElementSchedule element_schedule;  ///< derived: parallel element loop (element/cst.hpp)

@@ -6,6 +6,7 @@
 
 #include "fdem/contact_state.hpp"
 #include "fdem/contact_topology.hpp"
+#include "fdem/fracture.hpp"
 #include "fdem/math.hpp"
 
 namespace fdem {
@@ -23,9 +24,11 @@ struct Energy {
     Real work_external_pending = 0;
     Real dissipated_viscous = 0;  ///< material damping eta D:D and mass damping
     Real dissipated_contact = 0;  ///< contact damping, hysteresis and friction
+    Real joint = 0;     ///< stored energy of the cohesive joints E_joint (theory eq. 9.18)
+    Real fracture = 0;  ///< fracture dissipation W_frac = joint work - E_joint (eq. 9.19)
     Real total() const {
         return kinetic + strain + contact - work_gravity - work_external + dissipated_viscous +
-               dissipated_contact;
+               dissipated_contact + joint + fracture;
     }
 };
 
@@ -69,6 +72,16 @@ struct State {
     /// x, v and every other energy are bitwise the same either way. Callers that read the
     /// energies only on output / check steps set it for those steps (docs/performance.md).
     bool need_energy = true;
+
+    /// Discrete fracture (docs/theory.md §9): per-joint history (damage, status, work), empty
+    /// without joints; the fragment of every triangle (the smallest triangle id of its connected
+    /// component over unbroken joints and shared nodes, spec fracture.md §4.1; empty without
+    /// joints); and per node the representative of its contact vertex (sector, spec §4.2: the
+    /// smallest copy id among the copies of one original vertex still connected around it by
+    /// unbroken joints; empty without joints). All saved in checkpoints or rebuilt on restore.
+    JointState joints;
+    std::vector<TriId> tri_fragment;
+    std::vector<NodeId> node_sector;
 
     ContactState contact;  ///< pair history, candidate lists, scratch (contact_state.hpp)
     /// The contact topology (boundary, virtual nodes, sub-triangles, nodal distances, target

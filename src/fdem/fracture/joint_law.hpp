@@ -11,19 +11,6 @@
 
 namespace fdem {
 
-/// Constants of one JointMaterial derived once (make_joint_law), read by the kernel.
-struct JointLaw {
-    Real ft = 0, c = 0, tan_phi = 0;  ///< f_t, c [Pa], tan(phi)
-    Real p = 0, ps = 0;               ///< penalties p, p_s [Pa]
-    Real GI = 0, GII = 0;             ///< fracture energies [J/m^2]
-    Real Iz = 0;                      ///< integral of z over [0, 1] (eq. 9.11)
-    Real half_p_over_ft = 0;          ///< p/(2 f_t): xi = o p/(2 h f_t) = o/o_p (eq. 9.4)
-    Real half_ps = 0;                 ///< p_s/2: 1/s_p = (p_s/2)/(h f_s) (eq. 9.4)
-    SofteningCurve curve = SofteningCurve::EvansMarathe;
-    SofteningLength length_rule = SofteningLength::Exact;
-    int32_t failure_points = 2;
-};
-
 /// Validated derived constants; throws std::invalid_argument naming the bad parameter.
 JointLaw make_joint_law(const JointMaterial& jm);
 
