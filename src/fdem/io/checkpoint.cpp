@@ -130,6 +130,8 @@ void put(Sink& o, const Energy& e) {
     put(o, e.work_external_pending);
     put(o, e.dissipated_viscous);
     put(o, e.dissipated_contact);
+    put(o, e.joint);     // since format 7
+    put(o, e.fracture);  // since format 7
 }
 
 // ---- the payload: one function per direction, fields in the same order --------------------
@@ -271,6 +273,8 @@ public:
             get(v.work_external_pending);
             get(v.dissipated_viscous);
             get(v.dissipated_contact);
+            get(v.joint);
+            get(v.fracture);
         } else {
             static_assert(sizeof(T) == 0, "no deserialisation for this type");
         }

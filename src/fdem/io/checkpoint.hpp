@@ -30,11 +30,12 @@
 namespace fdem {
 
 /// Version of the checkpoint layout; bump it whenever the payload changes.
-constexpr uint32_t kCheckpointFormat = 6;  // 2: baseline A couples (ContactState::legacy)
+constexpr uint32_t kCheckpointFormat = 7;  // 2: baseline A couples (ContactState::legacy)
                                            // 3: Energy::work_external_pending
                                            // 4: PairHistory::f_damp
                                            // 5: RunProgress::impulses (bodies.csv)
                                            // 6: State::bc_velocity, bc_enabled (controls)
+                                           // 7: Energy::joint, fracture (issue #14)
 
 /// CLI bookkeeping that must survive a restart so output continues where it stopped.
 struct RunProgress {
