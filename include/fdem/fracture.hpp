@@ -43,6 +43,9 @@ struct JointMaterial {
     SofteningLength softening_length = SofteningLength::Exact;
     Irreversibility irreversibility = Irreversibility::Frozen;
     int32_t failure_points = 2;  ///< 1..3 integration points with D >= 1 break the joint
+    /// Accept joints longer than h_max (theory eq. 9.14), whose softening branch is shorter than
+    /// 2 o_p; false: finalize_model() rejects them (InputError naming the longest joint)
+    bool allow_coarse = false;
 };
 
 /// I_z = integral of z(D) over [0, 1] (theory eq. 9.11): 0.38631 for Evans-Marathe, 1/2 linear.

@@ -30,6 +30,18 @@ struct CheckSettings {
     PenetrationCheck penetration = PenetrationCheck::Fail;
 };
 
+/// Which joints the joint output writes ([fracture] output_joints, spec fracture.md §8).
+enum class JointOutput { Damaged, All, None };
+/// When fragments.csv is written ([fracture] fragments, spec fracture.md §8).
+enum class FragmentOutput { Interval, End };
+
+/// The global [fracture] table (docs/scenario.md). crack_contact = "self" (rule X, theory §9)
+/// and contact_targets = "copies" are the only choices implemented, so they are not stored.
+struct FractureSettings {
+    JointOutput output_joints = JointOutput::Damaged;  ///< softening and broken joints
+    FragmentOutput fragments = FragmentOutput::Interval;
+};
+
 struct RunSettings {
     Real dt = 0;           ///< time step [s] actually used
     bool dt_auto = false;  ///< dt = "auto" was given
@@ -47,6 +59,7 @@ struct RunSettings {
     std::string dt_cause;
     OutputSettings output;
     CheckSettings checks;
+    FractureSettings fracture;
 };
 
 struct Scenario {

@@ -41,12 +41,18 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string> kTopKeys = {"simulation", "output", "material", "body",
                                            "boundary",   "load",   "kick",     "damping",
-                                           "contact",    "checks", "probe"};
+                                           "contact",    "checks", "probe",    "fracture"};
 const std::vector<std::string> kContactLawKeys = {"penalty",  "alpha",
                                                   "beta",     "length_scale",
                                                   "damping",  "damp_normal_only",
                                                   "friction", "tangential_penalty",
                                                   "unloading"};
+
+const std::vector<std::string> kMaterialFractureKeys = {
+    "tensile_strength",   "cohesion",        "friction_angle", "fracture_energy_I",
+    "fracture_energy_II", "penalty",         "shear_penalty",  "softening",
+    "softening_length",   "irreversibility", "failure_points", "residual_friction",
+    "allow_coarse"};
 
 /// Optional sub-table: nullptr when absent; error when the key holds something else.
 const toml::table* sub_table(const SourceText& src, const toml::table& root, const char* key) {
@@ -172,6 +178,7 @@ public:
     Scenario read(const toml::table& root) {
         Scenario sc;
         sc.path = src_.name;
+        m_ = &sc.model;
         Fields top(src_, root, "scenario", "", kTopKeys);
 
         read_simulation(top, sc);
@@ -179,6 +186,8 @@ public:
         read_checks(root, sc);
         read_materials(root, sc.model);
         read_bodies(root, sc.model);
+        check_joint_lengths(sc.model);
+        read_fracture(root, sc);
         read_boundaries(root, sc.model);
         read_loads(root, sc.model);
         read_kicks(root, sc.model);
@@ -301,7 +310,7 @@ private:
             Fields f(src_, *tables[i], fmt::format("[[material]] #{}", i + 1),
                      fmt::format("material[{}]", i),
                      {"name", "density", "youngs_modulus", "poisson_ratio", "plane", "viscosity",
-                      "damping_ratio"});
+                      "damping_ratio", "fracture"});
             Material mat;
             mat.name = f.string("name", std::nullopt);
             f.set_context(fmt::format("material \"{}\"", mat.name));
@@ -320,9 +329,95 @@ private:
             mat.viscosity = f.real("viscosity", 0.0, "Pa s", Bounds::non_negative());
             mat.damping_ratio = f.real("damping_ratio", 0.0, "", Bounds::non_negative());
             compute_lame(mat);
+            fracture_tables_.push_back(nullptr);
+            if (f.has("fracture")) {
+                read_material_fracture(f, i, mat);
+            }
             material_names_.push_back(mat.name);
             m.materials.push_back(mat);
         }
+    }
+
+    /// [material.fracture] of material i (docs/scenario.md; spec fracture.md §10; the law of
+    /// docs/theory.md §9).
+    void read_material_fracture(const Fields& mf, size_t i, Material& mat) {
+        const toml::node& n = *mf.node("fracture");
+        if (!n.is_table()) {
+            mf.fail(n, "fracture",
+                    fmt::format("fracture must be a table (write [material.fracture] on its own "
+                                "line after the material's keys), got {} {}",
+                                io::describe_type(n), io::describe_value(n)));
+        }
+        fracture_tables_.back() = n.as_table();
+        Fields f(src_, *n.as_table(), fmt::format("material \"{}\" [material.fracture]", mat.name),
+                 fmt::format("material[{}].fracture", i), kMaterialFractureKeys);
+        JointMaterial& j = mat.fracture;
+        j.tensile_strength = f.real("tensile_strength", std::nullopt, "Pa", Bounds::positive());
+        j.cohesion = f.real("cohesion", std::nullopt, "Pa", Bounds::positive());
+        constexpr Real kPi = 3.14159265358979323846;
+        j.friction_angle =
+            f.real("friction_angle", std::nullopt, "degrees", {0.0, 90.0, false, true}) *
+            (kPi / 180.0);
+        j.fracture_energy_I =
+            f.real("fracture_energy_I", std::nullopt, "J/m^2", Bounds::positive());
+        j.fracture_energy_II =
+            f.real("fracture_energy_II", std::nullopt, "J/m^2", Bounds::positive());
+        // penalties: a stress in Pa, or "auto" (p = 10 E, p_s = p; spec fracture.md §12.6)
+        const auto penalty = [&](const char* key, Real automatic, const char* auto_text) {
+            const toml::node* p = f.node(key);
+            if (p == nullptr) {
+                return automatic;
+            }
+            if (p->is_string()) {
+                if (p->value<std::string>().value_or("") != "auto") {
+                    f.fail(*p, key,
+                           fmt::format("{} must be a number in Pa (> 0) or \"auto\" ({}), got {}",
+                                       key, auto_text, io::describe_value(*p)));
+                }
+                return automatic;
+            }
+            return f.real(key, std::nullopt, "Pa", Bounds::positive());
+        };
+        j.penalty = penalty("penalty", 10.0 * mat.youngs_modulus, "10 x youngs_modulus");
+        j.shear_penalty = penalty("shear_penalty", j.penalty, "= penalty");
+        j.softening = f.choice("softening", std::string("evans-marathe"),
+                               {"evans-marathe", "linear"}) == "linear"
+                          ? SofteningCurve::Linear
+                          : SofteningCurve::EvansMarathe;
+        const std::string rule = f.choice("softening_length", std::string("exact"),
+                                          {"exact", "total", "y-geo", "solidity"});
+        j.softening_length = rule == "exact"   ? SofteningLength::Exact
+                             : rule == "total" ? SofteningLength::Total
+                             : rule == "y-geo" ? SofteningLength::YGeo
+                                               : SofteningLength::Solidity;
+        const std::string irr =
+            f.choice("irreversibility", std::string("frozen"), {"frozen", "none", "y-geo"});
+        if (irr != "frozen") {
+            f.fail(*f.node("irreversibility"), "irreversibility",
+                   fmt::format("irreversibility = \"{}\" is not implemented; only \"frozen\" is "
+                               "(per integration point the largest damage reached is kept, "
+                               "docs/theory.md §9.4)",
+                               irr));
+        }
+        j.irreversibility = Irreversibility::Frozen;
+        const Real points = f.real("failure_points", 2.0, "", {1.0, 3.0, false, false});
+        if (points != std::floor(points)) {
+            f.fail(*f.node("failure_points"), "failure_points",
+                   fmt::format("failure_points must be an integer 1, 2 or 3 (integration points "
+                               "with D >= 1 that break a joint), got {}",
+                               io::describe_value(*f.node("failure_points"))));
+        }
+        j.failure_points = static_cast<int32_t>(points);
+        const Real mu_r = f.real("residual_friction", 0.0, "", Bounds::non_negative());
+        if (mu_r != 0) {
+            f.fail(*f.node("residual_friction"), "residual_friction",
+                   fmt::format("residual_friction = {} is not implemented; only 0 (no friction on "
+                               "a softening joint in compression, as Y, Y-Geo and Solidity; a "
+                               "broken joint's faces get their friction from [contact])",
+                               io::describe_value(*f.node("residual_friction"))));
+        }
+        j.allow_coarse = f.boolean("allow_coarse", false);
+        mat.has_fracture = true;
     }
 
     int material_index(const Fields& f, std::string_view key) const {
@@ -441,11 +536,11 @@ private:
             throw InputError({src_.name, 0, 0}, "body", "no [[body]] defined");
         }
         for (size_t i = 0; i < tables.size(); ++i) {
-            Fields f(src_, *tables[i], fmt::format("[[body]] #{}", i + 1),
-                     fmt::format("body[{}]", i),
-                     {"name", "mesh", "mesh_size", "group", "material", "velocity", "fixed",
-                      "element", "pieces", "angular_velocity", "velocity_gradient", "origin",
-                      "piece_motion", "max_triangles", "mesh_time_limit"});
+            Fields f(
+                src_, *tables[i], fmt::format("[[body]] #{}", i + 1), fmt::format("body[{}]", i),
+                {"name", "mesh", "mesh_size", "group", "material", "velocity", "fixed", "element",
+                 "pieces", "angular_velocity", "velocity_gradient", "origin", "piece_motion",
+                 "max_triangles", "mesh_time_limit", "fracture", "fracture_group", "prebroken"});
             BodyEntry entry;
             entry.name = f.string("name", std::nullopt);
             entry.table = tables[i];
@@ -556,6 +651,7 @@ private:
             for (const int32_t t : tris) {
                 lm.tri_owner[static_cast<size_t>(t)] = static_cast<int>(i);
             }
+            read_body_fracture(f, lm, tris, m, opt);
             // pieces (docs/scenario.md): "one" = the selection must be one connected piece (a
             // disconnected mesh is usually a modelling error); "separate" = every connected
             // piece becomes its own discrete element (a pack of grains meshed together)
@@ -580,6 +676,312 @@ private:
             check_duplicate_nodes(f, lm, entry.node_map, m);
             body_by_name_.emplace(entry.name, bodies_.size());
             bodies_.push_back(std::move(entry));
+        }
+    }
+
+    /// Fracture keys of a [[body]] entry (docs/scenario.md; spec fracture.md §10): fracture,
+    /// fracture_group (a surface group: joints on the internal edges between its triangles; a
+    /// curve group: joints on its edges only), prebroken (curve groups broken at t = 0).
+    void read_body_fracture(const Fields& f, const LoadedMesh& lm, const std::vector<int32_t>& tris,
+                            const Model& m, BodyOptions& opt) {
+        const Material& mat = m.materials[static_cast<size_t>(opt.material)];
+        const bool composite =
+            opt.element ? *opt.element == ElementKind::Composite6 : lm.data.second_order();
+        bool want = false;
+        if (f.has("fracture")) {
+            want = f.boolean("fracture", std::nullopt);
+            if (want && !mat.has_fracture) {
+                f.fail(*f.node("fracture"), "fracture",
+                       fmt::format("fracture = true needs the joint parameters of material "
+                                   "\"{}\", but it has no [material.fracture] table; add one "
+                                   "(tensile_strength, cohesion, friction_angle, "
+                                   "fracture_energy_I, fracture_energy_II) or remove fracture",
+                                   mat.name));
+            }
+            if (want && opt.fixed) {
+                f.fail(*f.node("fracture"), "fracture",
+                       "fracture = true on a fixed body (fixed = true): a fixed body never "
+                       "deforms, so it cannot crack; remove one of them");
+            }
+        } else {
+            // default: the material's [material.fracture] switches joints on; a fixed body
+            // never fractures (it never deforms)
+            want = mat.has_fracture && !opt.fixed;
+        }
+        for (const char* k : {"fracture_group", "prebroken"}) {
+            if (!want && f.has(k)) {
+                f.fail(*f.node(k), k,
+                       fmt::format("{} only applies to a body with fracture, but body \"{}\" has "
+                                   "none ({}); remove {}",
+                                   k, opt.name,
+                                   f.has("fracture") ? "fracture = false"
+                                   : opt.fixed       ? "it is fixed"
+                                                     : fmt::format("material \"{}\" has no "
+                                                                         "[material.fracture]",
+                                                                   mat.name),
+                                   k));
+            }
+        }
+        if (!want) {
+            return;
+        }
+        if (composite) {
+            const char* at = f.has("fracture") ? "fracture" : f.has("element") ? "element" : "mesh";
+            f.fail(*f.node(at), at,
+                   fmt::format("fracture{} is not available for composite (6-node) elements yet "
+                               "(spec fracture.md §12.12); set element = \"cst\" (every 6-node "
+                               "triangle split into 4 CSTs) or fracture = false",
+                               f.has("fracture") ? " = true"
+                                                 : fmt::format(" (on by default: material "
+                                                               "\"{}\" has [material.fracture])",
+                                                               mat.name)));
+        }
+        opt.fracture = true;
+        const MeshData& mesh = lm.data;
+
+        // the triangles as the model will have them (a 6-node triangle as its 4 CSTs), in mesh
+        // node ids, and their undirected edges -> number of triangles using them
+        const auto csts = [&](int32_t t) {
+            const auto& c = mesh.tris[static_cast<size_t>(t)];
+            std::vector<std::array<int32_t, 3>> out;
+            if (!mesh.second_order()) {
+                out.push_back(c);
+            } else {
+                const auto& mid = mesh.tri_mid[static_cast<size_t>(t)];
+                out = {{c[0], mid[0], mid[2]},
+                       {mid[0], c[1], mid[1]},
+                       {mid[2], mid[1], c[2]},
+                       {mid[0], mid[1], mid[2]}};
+            }
+            return out;
+        };
+        const auto count_edges = [&](const std::vector<int32_t>& sel) {
+            std::map<std::pair<int32_t, int32_t>, int> count;
+            for (const int32_t t : sel) {
+                for (const auto& c : csts(t)) {
+                    for (int k = 0; k < 3; ++k) {
+                        const int32_t a = c[static_cast<size_t>(k)],
+                                      b = c[static_cast<size_t>((k + 1) % 3)];
+                        ++count[{std::min(a, b), std::max(a, b)}];
+                    }
+                }
+            }
+            return count;
+        };
+        const std::map<std::pair<int32_t, int32_t>, int> edge_count = count_edges(tris);
+        Real longest = 0;
+        const auto measure = [&](int32_t a, int32_t b) {
+            longest = std::max(longest, norm(mesh.nodes[static_cast<size_t>(b)] -
+                                             mesh.nodes[static_cast<size_t>(a)]));
+        };
+        // the edges of the curve groups named by key `key` (value `name`), checked to be
+        // internal edges of the selection; 3-node lines give their two halves
+        const auto curve_edges = [&](const toml::node& at, const char* key, const std::string& name,
+                                     std::vector<std::array<int32_t, 2>>& out) {
+            bool any = false;
+            for (const size_t g : lm.named(name)) {
+                const PhysicalGroup& pg = mesh.groups[g];
+                if (pg.dim != 1) continue;
+                for (const int32_t e : pg.elements) {
+                    const auto& l = mesh.lines[static_cast<size_t>(e)];
+                    std::vector<std::array<int32_t, 2>> pieces;
+                    if (mesh.line_mid.empty()) {
+                        pieces.push_back(l);
+                    } else {
+                        const int32_t mid = mesh.line_mid[static_cast<size_t>(e)];
+                        pieces = {{l[0], mid}, {mid, l[1]}};
+                    }
+                    for (const auto& [a, b] : pieces) {
+                        const auto it = edge_count.find({std::min(a, b), std::max(a, b)});
+                        if (it == edge_count.end()) continue;  // another part of the mesh
+                        if (it->second != 2) {
+                            const Vec2 xa = mesh.nodes[static_cast<size_t>(a)],
+                                       xb = mesh.nodes[static_cast<size_t>(b)];
+                            f.fail(at, key,
+                                   fmt::format("the edge from ({:g}, {:g}) to ({:g}, {:g}) m of "
+                                               "curve group \"{}\" is on the boundary of body "
+                                               "\"{}\"; joints exist only on internal edges "
+                                               "(between two triangles of the body)",
+                                               xa.x, xa.y, xb.x, xb.y, name, opt.name));
+                        }
+                        any = true;
+                        out.push_back({a, b});
+                        measure(a, b);
+                    }
+                }
+            }
+            if (!any) {
+                f.fail(at, key,
+                       fmt::format("curve group \"{}\" of mesh '{}' has no edge inside body "
+                                   "\"{}\" (it lies on another part of the mesh)",
+                                   name, lm.path, opt.name));
+            }
+        };
+        // a group name: must exist; kind 2 (surface) or 1 (curve) allowed as `kinds` says
+        const auto find_group = [&](const toml::node& at, const char* key, const std::string& name,
+                                    bool surface_ok) -> int {
+            int dim = -1;
+            for (const size_t g : lm.named(name)) {
+                dim = std::max(dim, mesh.groups[g].dim);
+            }
+            if (dim < 0) {
+                const std::string guess = io::closest(name, group_names(mesh));
+                f.fail(
+                    at, key,
+                    fmt::format("mesh '{}' has no physical group \"{}\"{}; {}", lm.path, name,
+                                guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
+                                available_groups(mesh)));
+            }
+            if (dim == 0 || (dim == 2 && !surface_ok)) {
+                f.fail(
+                    at, key,
+                    fmt::format("\"{}\" is a {} physical group of mesh '{}', but {} needs {}; {}",
+                                name, group_kind(dim), lm.path, key,
+                                surface_ok ? "a surface group (joints on the internal edges "
+                                             "between its triangles) or a curve group (joints "
+                                             "on its edges)"
+                                           : "curve groups (the edges broken at t = 0)",
+                                available_groups(mesh)));
+            }
+            return dim;
+        };
+
+        if (f.has("fracture_group")) {
+            const std::string g = f.string("fracture_group", std::nullopt);
+            const toml::node& at = *f.node("fracture_group");
+            if (find_group(at, "fracture_group", g, true) == 2) {
+                std::vector<char> in_body(mesh.tris.size(), 0);
+                for (const int32_t t : tris)
+                    in_body[static_cast<size_t>(t)] = 1;
+                for (const size_t k : lm.named(g)) {
+                    if (mesh.groups[k].dim != 2) continue;
+                    for (const int32_t t : mesh.groups[k].elements) {
+                        if (in_body[static_cast<size_t>(t)]) opt.fracture_tris.push_back(t);
+                    }
+                }
+                std::sort(opt.fracture_tris.begin(), opt.fracture_tris.end());
+                opt.fracture_tris.erase(
+                    std::unique(opt.fracture_tris.begin(), opt.fracture_tris.end()),
+                    opt.fracture_tris.end());
+                if (opt.fracture_tris.empty()) {
+                    f.fail(at, "fracture_group",
+                           fmt::format("surface group \"{}\" of mesh '{}' has no triangle of "
+                                       "body \"{}\"",
+                                       g, lm.path, opt.name));
+                }
+                // joints on the internal edges between two triangles of the group
+                for (const auto& [e, count] : count_edges(opt.fracture_tris)) {
+                    if (count == 2) measure(e.first, e.second);
+                }
+            } else {
+                curve_edges(at, "fracture_group", g, opt.joint_edges);
+            }
+        } else {
+            for (const auto& [e, count] : edge_count) {
+                if (count == 2) measure(e.first, e.second);
+            }
+        }
+        if (const toml::node* n = f.node("prebroken")) {
+            const toml::array* a = n->as_array();
+            bool ok = a != nullptr && !a->empty();
+            for (size_t k = 0; ok && k < a->size(); ++k)
+                ok = a->get(k)->is_string();
+            if (!ok) {
+                f.fail(*n, "prebroken",
+                       fmt::format("prebroken must be a non-empty list of curve group names, "
+                                   "e.g. [\"notch\"], got {}",
+                                   io::describe_value(*n)));
+            }
+            for (const toml::node& e : *a) {
+                const std::string g = e.value<std::string>().value_or("");
+                find_group(e, "prebroken", g, false);
+                curve_edges(e, "prebroken", g, opt.prebroken_edges);
+            }
+        }
+        auto& lj = longest_joint_[opt.material];
+        if (longest > lj.first) lj = {longest, opt.name};
+    }
+
+    /// Joint lengths against the softening rule of their material (docs/theory.md §9.3): with
+    /// "exact", h <= h_max (eq. 9.14) unless allow_coarse; with "total", the softening branch
+    /// must have a positive length, G_I > (2/3) f_t o_p = (4/3) h f_t^2 / p (eqs. 9.4, 9.12).
+    void check_joint_lengths(const Model& m) const {
+        for (const auto& [mi, longest] : longest_joint_) {
+            const auto& [h, body] = longest;
+            const Material& mat = m.materials[static_cast<size_t>(mi)];
+            const JointMaterial& j = mat.fracture;
+            const toml::table& t = *fracture_tables_[static_cast<size_t>(mi)];
+            Fields f(src_, t, fmt::format("material \"{}\" [material.fracture]", mat.name),
+                     fmt::format("material[{}].fracture", mi), kMaterialFractureKeys);
+            const Real ft = j.tensile_strength;
+            if (j.softening_length == SofteningLength::Exact && !j.allow_coarse) {
+                const Real h_max = joint_max_length(j);  // eq. 9.14
+                if (h > h_max) {
+                    f.fail_table(fmt::format(
+                        "the longest joint (h = {:.4g} m, in body \"{}\") is longer than h_max = "
+                        "p G_I / (4 I_z f_t^2) = {:.4g} m (docs/theory.md eq. 9.14), so its "
+                        "softening branch would be shorter than 2 o_p; refine the mesh to "
+                        "h <= {:.4g} m, raise penalty or fracture_energy_I, or set allow_coarse "
+                        "= true",
+                        h, body, h_max, h_max));
+                }
+            }
+            if (j.softening_length == SofteningLength::Total) {
+                const Real elastic = 4.0 / 3.0 * h * ft * ft / j.penalty;  // (2/3) f_t o_p
+                if (!(j.fracture_energy_I > elastic)) {
+                    f.fail(*t.get("softening_length"), "softening_length",
+                           fmt::format("softening_length = \"total\" needs fracture_energy_I > "
+                                       "(2/3) f_t o_p = (4/3) h f_t^2 / p for every joint, but "
+                                       "the longest joint (h = {:.4g} m, in body \"{}\") gives "
+                                       "{:.4g} J/m^2 >= fracture_energy_I = {:g} J/m^2 (the "
+                                       "pre-peak branch alone dissipates more than G_I); refine "
+                                       "the mesh, raise penalty, or use \"exact\"",
+                                       h, body, elastic, j.fracture_energy_I));
+                }
+            }
+        }
+    }
+
+    // ---- [fracture] (global, optional) ------------------------------------------------------
+    void read_fracture(const toml::table& root, Scenario& sc) {
+        const toml::table* t = sub_table(src_, root, "fracture");
+        if (!t) {
+            return;
+        }
+        Fields f(src_, *t, "[fracture]", "fracture",
+                 {"crack_contact", "ramp_steps", "contact_targets", "output_joints", "fragments"});
+        if (f.choice("crack_contact", std::string("self"), {"self", "pairs"}) == "pairs") {
+            f.fail(*f.node("crack_contact"), "crack_contact",
+                   "crack_contact = \"pairs\" (broken joints as node-pair contacts with a force "
+                   "ramp) is not implemented; only \"self\" is (crack faces meet by the smooth "
+                   "contact of the body with itself, rule X of docs/theory.md §9)");
+        }
+        if (f.has("ramp_steps")) {
+            f.fail(*f.node("ramp_steps"), "ramp_steps",
+                   "ramp_steps only applies with crack_contact = \"pairs\", which is not "
+                   "implemented; remove ramp_steps");
+        }
+        if (f.choice("contact_targets", std::string("copies"), {"copies", "sector"}) == "sector") {
+            f.fail(*f.node("contact_targets"), "contact_targets",
+                   "contact_targets = \"sector\" (one contact evaluation per logical vertex) is "
+                   "not implemented; only \"copies\" is (every node copy is a target with its "
+                   "own mass)");
+        }
+        const std::string joints =
+            f.choice("output_joints", std::string("damaged"), {"damaged", "all", "none"});
+        sc.run.fracture.output_joints = joints == "damaged" ? JointOutput::Damaged
+                                        : joints == "all"   ? JointOutput::All
+                                                            : JointOutput::None;
+        sc.run.fracture.fragments =
+            f.choice("fragments", std::string("interval"), {"interval", "end"}) == "end"
+                ? FragmentOutput::End
+                : FragmentOutput::Interval;
+        if (longest_joint_.empty()) {
+            const SourceLocation at = f.location("");
+            sc.warnings.push_back(fmt::format(
+                "{}:{}:{}: warning: [fracture] is given but no body has fracture (no material "
+                "with [material.fracture] is used by a body that is not fixed); it has no effect",
+                at.file, at.line, at.column));
         }
     }
 
@@ -915,6 +1317,12 @@ private:
         }
     }
 
+    /// The node that stands for the mesh vertex of node n: the smallest of its copies with
+    /// fracture (Model::node_vertex), n itself otherwise.
+    static NodeId vertex(const Model& m, NodeId n) {
+        return m.node_vertex.empty() ? n : m.node_vertex[static_cast<size_t>(n)];
+    }
+
     /// The boundary edges of body entry b under the line elements of curve group `group`,
     /// oriented counter-clockwise around the body (Load::edges); a 3-node line gives its two
     /// halves, the edges of the sub-triangles. Every edge must be on the body's boundary.
@@ -931,16 +1339,19 @@ private:
                 for (int k = 0; k < 3; ++k) {
                     const NodeId p = n[static_cast<size_t>(k)],
                                  q = n[static_cast<size_t>((k + 1) % 3)];
-                    auto& e = edges[{std::min(p, q), std::max(p, q)}];
+                    // keyed by mesh vertex: the node copies of a vertex (fracture) are one
+                    const NodeId wp = vertex(m, p), wq = vertex(m, q);
+                    auto& e = edges[{std::min(wp, wq), std::max(wp, wq)}];
                     ++e.first;
                     e.second = {p, q};
                 }
             }
         }
         const auto add = [&](int32_t mp, int32_t mq) {
-            const NodeId p = entry.node_map[mp];
-            const NodeId q = entry.node_map[mq];
-            if (p == kNone || q == kNone) return;  // another part of the mesh
+            const NodeId p0 = entry.node_map[mp];
+            const NodeId q0 = entry.node_map[mq];
+            if (p0 == kNone || q0 == kNone) return;  // another part of the mesh
+            const NodeId p = vertex(m, p0), q = vertex(m, q0);
             const auto it = edges.find({std::min(p, q), std::max(p, q)});
             const Vec2 a = mesh.nodes[static_cast<size_t>(mp)],
                        c = mesh.nodes[static_cast<size_t>(mq)];
@@ -1008,8 +1419,7 @@ private:
                 nodes.push_back(id);
             }
         }
-        std::sort(nodes.begin(), nodes.end());
-        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        add_node_copies(m_, entry, nodes);
         if (nodes.empty()) {
             f.fail(*f.node("group"), "group",
                    fmt::format("physical group \"{}\" selects none of the nodes of body "
@@ -1017,6 +1427,33 @@ private:
                                group, entry.name, mesh.file));
         }
         return nodes;
+    }
+
+    /// nodes (one model node per mesh vertex, from the entry's node map), sorted and unique,
+    /// plus every other node copy of the same vertices: with fracture a vertex has one copy per
+    /// run of its triangle fan between jointed edges (Model::node_vertex maps each copy to the
+    /// smallest), and a support or probe on the vertex must act on all of them.
+    static void add_node_copies(const Model* m, const BodyEntry& entry,
+                                std::vector<NodeId>& nodes) {
+        if (m != nullptr && !m->node_vertex.empty() &&
+            m->node_vertex.size() == static_cast<size_t>(m->num_nodes())) {
+            std::vector<NodeId> reps;
+            for (const NodeId n : nodes)
+                reps.push_back(m->node_vertex[static_cast<size_t>(n)]);
+            std::sort(reps.begin(), reps.end());
+            for (BodyId b = entry.body_begin; b < entry.body_end; ++b) {
+                const Body& body = m->bodies[static_cast<size_t>(b)];
+                if (!body.fracture) continue;
+                for (NodeId k = body.node_begin; k < body.node_end; ++k) {
+                    if (std::binary_search(reps.begin(), reps.end(),
+                                           m->node_vertex[static_cast<size_t>(k)])) {
+                        nodes.push_back(k);
+                    }
+                }
+            }
+        }
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
     }
 
     // ---- [[probe]] (after finalize_model: nearest nodes need the built model) ---------------
@@ -1465,7 +1902,13 @@ private:
                         o.depth, o.other, o.tolerance),
             src_.line(loc.line));
     }
+    const Model* m_ = nullptr;  ///< the model being built (for group_nodes)
     std::vector<std::string> material_names_;
+    /// [material.fracture] table of each material (nullptr: none), for the checks that need
+    /// the joint lengths of the bodies
+    std::vector<const toml::table*> fracture_tables_;
+    /// per material: the longest jointed mesh edge of its bodies [m] and the body it is in
+    std::map<int, std::pair<Real, std::string>> longest_joint_;
     std::vector<BodyEntry> bodies_;
     std::unordered_map<std::string, size_t> body_by_name_;  ///< name -> index into bodies_
     std::vector<LoadedMesh> meshes_;

@@ -1,0 +1,29 @@
+// Two 1 m x 0.5 m blocks, one on the other, meshed as one body (shared nodes on y = 0.5); the
+// common edge is the curve group "joint" (a jointed line), "notch" is its left half
+// (tests/input/io/fracture_errors_test.cpp, docs/scenario.md [material.fracture]).
+Point(1) = {0, 0, 0};
+Point(2) = {1, 0, 0};
+Point(3) = {1, 0.5, 0};
+Point(4) = {0, 0.5, 0};
+Point(5) = {1, 1, 0};
+Point(6) = {0, 1, 0};
+Point(7) = {0.5, 0.5, 0};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 7};
+Line(4) = {7, 4};
+Line(5) = {4, 1};
+Line(6) = {3, 5};
+Line(7) = {5, 6};
+Line(8) = {6, 4};
+Curve Loop(1) = {1, 2, 3, 4, 5};
+Curve Loop(2) = {-4, -3, 6, 7, 8};
+Plane Surface(1) = {1};
+Plane Surface(2) = {2};
+Physical Surface("lower") = {1};
+Physical Surface("upper") = {2};
+Physical Curve("joint") = {3, 4};
+Physical Curve("notch") = {4};
+Physical Curve("bottom") = {1};
+Physical Curve("top") = {7};
+Physical Point("corner") = {1};
