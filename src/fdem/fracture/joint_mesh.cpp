@@ -25,7 +25,7 @@ SplitMesh split_mesh(std::span<const Vec2> x, std::span<const std::array<NodeId,
 
 void add_edge_joints(Joints& J, std::span<const Vec2> x0,
                      std::span<const std::array<NodeId, 3>> tris, std::span<const NodeId> vertex,
-                     int32_t law) {
+                     int32_t law, const std::vector<std::array<NodeId, 2>>* only) {
     // (smaller vertex, larger vertex, triangle, slot) per edge, sorted: a shared edge is a run
     std::vector<std::tuple<NodeId, NodeId, int32_t, int32_t>> edges;
     edges.reserve(3 * tris.size());
@@ -45,7 +45,8 @@ void add_edge_joints(Joints& J, std::span<const Vec2> x0,
             ++r;
         if (r - i > 2)
             throw std::invalid_argument("add_edge_joints: edge of more than 2 triangles");
-        if (r - i == 2)
+        const std::array<NodeId, 2> key{std::get<0>(edges[i]), std::get<1>(edges[i])};
+        if (r - i == 2 && (!only || std::binary_search(only->begin(), only->end(), key)))
             found.push_back({std::get<2>(edges[i]), std::get<3>(edges[i]),
                              std::get<2>(edges[i + 1]), std::get<3>(edges[i + 1])});
         i = r;

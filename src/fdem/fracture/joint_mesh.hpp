@@ -26,9 +26,11 @@ SplitMesh split_mesh(std::span<const Vec2> x, std::span<const std::array<NodeId,
 /// triangle id, nodes 0, 1 its edge in its own order (theory eq. 9.1); joints are ordered by
 /// (A, edge slot), so the numbering depends only on the mesh. Throws std::invalid_argument for
 /// an edge of more than two triangles or two neighbours of opposite orientation. Does not call
-/// finalize_joints.
+/// finalize_joints. With `only` (ascending (smaller, larger) vertex pairs), only the shared
+/// edges in that list get a joint (the model build's partially jointed bodies; the two sides of
+/// an edge not in the list may share their copies).
 void add_edge_joints(Joints& J, std::span<const Vec2> x0,
                      std::span<const std::array<NodeId, 3>> tris, std::span<const NodeId> vertex,
-                     int32_t law);
+                     int32_t law, const std::vector<std::array<NodeId, 2>>* only = nullptr);
 
 }  // namespace fdem

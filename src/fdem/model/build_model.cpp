@@ -5,6 +5,9 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <span>
+#include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -12,6 +15,9 @@
 #include "element/cst.hpp"
 #include "fdem/build.hpp"
 #include "fdem/error.hpp"
+#include "fracture/joint_law.hpp"
+#include "fracture/joint_mesh.hpp"
+#include "fracture/joints.hpp"
 #include "model/renumber.hpp"
 
 namespace fdem {
@@ -87,6 +93,156 @@ void set_initial_velocity(Model& m, const Body& b, const BodyOptions& opt) {
 
 }  // namespace
 
+namespace {
+
+/// The nodes, triangles and joints of one connected component `tris` (mesh triangle ids) of a
+/// body with fracture (BodyOptions::fracture, spec fracture.md §1.2). Jointed edges: the internal
+/// edges between two triangles of opt.fracture_tris (every triangle when both fracture_tris and
+/// joint_edges are empty), the edges opt.joint_edges and opt.prebroken_edges. Around every mesh
+/// vertex the fan of triangles is cut at the jointed edges; each run (corners connected through
+/// unjointed edges) gets its own node copy, created in order of first use by the triangles, so
+/// the first copy of a vertex has the smallest id (Model::node_vertex). map[local vertex] = that
+/// first copy. Joints: add_edge_joints on the jointed edges (ordered by triangle A, edge slot),
+/// law index = material index (finalize_model() makes Joints::laws per material).
+template <class SubTriangles, class Local>
+void add_jointed_nodes(Model& m, const MeshData& mesh, const std::vector<int32_t>& tris,
+                       const BodyOptions& opt, BodyId bid, SubTriangles&& sub_triangles,
+                       Local&& local, std::vector<NodeId>& map) {
+    using Edge = std::array<int32_t, 2>;  // (smaller, larger) mesh node ids
+    auto key = [](int32_t a, int32_t b) { return Edge{std::min(a, b), std::max(a, b)}; };
+    auto sorted_keys = [&](const std::vector<std::array<int32_t, 2>>& in) {
+        std::vector<Edge> out;
+        out.reserve(in.size());
+        for (const auto& e : in)
+            out.push_back(key(e[0], e[1]));
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+        return out;
+    };
+    const std::vector<Edge> listed = sorted_keys(opt.joint_edges);
+    const std::vector<Edge> prebroken = sorted_keys(opt.prebroken_edges);
+    std::vector<int32_t> region = opt.fracture_tris;
+    std::sort(region.begin(), region.end());
+    const bool all_tris = region.empty() && listed.empty();
+    auto in_region = [&](int32_t t) {
+        return all_tris || std::binary_search(region.begin(), region.end(), t);
+    };
+
+    // model triangles of the component (mesh node ids) and their mesh triangle
+    std::vector<std::array<int32_t, 3>> ctri;
+    std::vector<int32_t> cparent;
+    ctri.reserve(tris.size());
+    cparent.reserve(tris.size());
+    for (int32_t t : tris) {
+        std::array<std::array<int32_t, 3>, 4> sub{};
+        const int ns = sub_triangles(t, sub);
+        for (int k = 0; k < ns; ++k) {
+            ctri.push_back(sub[static_cast<size_t>(k)]);
+            cparent.push_back(t);
+        }
+    }
+    // edges (key, triangle, slot) sorted: a shared edge is a run of two
+    std::vector<std::tuple<Edge, int32_t, int32_t>> edges;
+    edges.reserve(3 * ctri.size());
+    for (size_t i = 0; i < ctri.size(); ++i) {
+        for (int k = 0; k < 3; ++k)
+            edges.emplace_back(
+                key(ctri[i][static_cast<size_t>(k)], ctri[i][static_cast<size_t>((k + 1) % 3)]),
+                static_cast<int32_t>(i), k);
+    }
+    std::sort(edges.begin(), edges.end());
+    DisjointSets corners(3 * ctri.size());       // corner 3 i + k
+    std::vector<std::array<NodeId, 2>> jointed;  // (smaller, larger) local vertex ids
+    for (size_t i = 0; i < edges.size();) {
+        size_t r = i + 1;
+        while (r < edges.size() && std::get<0>(edges[r]) == std::get<0>(edges[i]))
+            ++r;
+        if (r - i == 2) {
+            const Edge e = std::get<0>(edges[i]);
+            const int32_t ta = std::get<1>(edges[i]), tb = std::get<1>(edges[i + 1]);
+            const int32_t pa = cparent[static_cast<size_t>(ta)];
+            const int32_t pb = cparent[static_cast<size_t>(tb)];
+            const bool joint = (pa != pb && in_region(pa) && in_region(pb)) ||
+                               std::binary_search(listed.begin(), listed.end(), e) ||
+                               std::binary_search(prebroken.begin(), prebroken.end(), e);
+            if (joint) {
+                jointed.push_back({local(e[0]), local(e[1])});
+            } else {
+                // unjointed: the two triangles share their copies of both end vertices
+                for (const int32_t q : e) {
+                    int32_t ca = -1, cb = -1;
+                    for (int k = 0; k < 3; ++k) {
+                        if (ctri[static_cast<size_t>(ta)][static_cast<size_t>(k)] == q)
+                            ca = 3 * ta + k;
+                        if (ctri[static_cast<size_t>(tb)][static_cast<size_t>(k)] == q)
+                            cb = 3 * tb + k;
+                    }
+                    corners.unite(ca, cb);
+                }
+            }
+        }
+        // r - i > 2 (an edge of three triangles): left to build_topology's InputError
+        i = r;
+    }
+    std::sort(jointed.begin(), jointed.end());
+
+    // node copies: one per run, in order of first use; the first copy of a vertex represents it
+    if (m.node_vertex.size() < static_cast<size_t>(m.num_nodes())) {
+        for (NodeId i = static_cast<NodeId>(m.node_vertex.size()); i < m.num_nodes(); ++i)
+            m.node_vertex.push_back(i);
+    }
+    const NodeId node_begin = m.num_nodes();
+    const TriId tri_begin = m.num_tris();
+    std::vector<NodeId> copy_of_root(3 * ctri.size(), kNone);
+    std::vector<NodeId> lvertex;   // local vertex id of every new node (for add_edge_joints)
+    std::vector<int32_t> mvertex;  // its mesh node
+    for (size_t i = 0; i < ctri.size(); ++i) {
+        std::array<NodeId, 3> ids{};
+        for (int k = 0; k < 3; ++k) {
+            const int32_t q = ctri[i][static_cast<size_t>(k)];
+            const auto root = static_cast<size_t>(corners.find(static_cast<int32_t>(3 * i) + k));
+            if (copy_of_root[root] == kNone) {
+                const auto l = static_cast<size_t>(local(q));
+                copy_of_root[root] = m.num_nodes();
+                if (map[l] == kNone) map[l] = m.num_nodes();
+                m.node_x0.push_back(mesh.nodes[q]);
+                m.node_v0.push_back(opt.velocity);
+                m.node_body.push_back(bid);
+                m.node_vertex.push_back(map[l]);
+                lvertex.push_back(static_cast<NodeId>(l));
+                mvertex.push_back(q);
+            }
+            ids[static_cast<size_t>(k)] = copy_of_root[root];
+        }
+        m.tri_nodes.push_back(ids);
+        m.tri_body.push_back(bid);
+        m.tri_material.push_back(opt.material);
+    }
+
+    // joints (theory eq. 9.1) on the jointed edges, in the component's local node ids
+    const size_t nn = static_cast<size_t>(m.num_nodes() - node_begin);
+    std::vector<std::array<NodeId, 3>> ltris(ctri.size());
+    for (size_t i = 0; i < ctri.size(); ++i) {
+        for (int k = 0; k < 3; ++k)
+            ltris[i][static_cast<size_t>(k)] =
+                m.tri_nodes[static_cast<size_t>(tri_begin) + i][static_cast<size_t>(k)] -
+                node_begin;
+    }
+    const std::span<const Vec2> lx0(m.node_x0.data() + node_begin, nn);
+    const size_t j0 = m.joints.nodes.size();
+    add_edge_joints(m.joints, lx0, ltris, lvertex, opt.material, &jointed);
+    for (size_t j = j0; j < m.joints.nodes.size(); ++j) {
+        auto& n = m.joints.nodes[j];
+        const Edge e = key(mvertex[static_cast<size_t>(n[0])], mvertex[static_cast<size_t>(n[1])]);
+        if (std::binary_search(prebroken.begin(), prebroken.end(), e))
+            m.prebroken_joints.push_back(static_cast<int32_t>(j));
+        for (NodeId& id : n)
+            id += node_begin;
+    }
+}
+
+}  // namespace
+
 NodeId MeshNodeMap::operator[](int32_t q) const {
     const auto it = std::lower_bound(mesh_nodes.begin(), mesh_nodes.end(), q);
     if (it == mesh_nodes.end() || *it != q) return kNone;
@@ -108,6 +264,24 @@ MeshNodeMap add_bodies_mapped(Model& m, const MeshData& mesh, const std::vector<
     const bool second = mesh.second_order();
     const ElementKind kind =
         opt.element.value_or(second ? ElementKind::Composite6 : ElementKind::Cst);
+    if (opt.fracture) {
+        // spec fracture.md §12.12: the composite's sub-triangles share the volumetric part of the
+        // whole element, a joint between them would cut a single element
+        if (kind == ElementKind::Composite6) {
+            throw InputError({mesh.file, 0, 0}, "fracture",
+                             fmt::format("body \"{}\": fracture is not available for the "
+                                         "composite (6-node) element; use element = \"cst\" "
+                                         "or a mesh of 3-node triangles",
+                                         opt.name));
+        }
+        if (opt.material < 0 || opt.material >= static_cast<int32_t>(m.materials.size()) ||
+            !m.materials[static_cast<size_t>(opt.material)].has_fracture) {
+            throw InputError({mesh.file, 0, 0}, "fracture",
+                             fmt::format("body \"{}\" has fracture, but its material has no "
+                                         "[material.fracture] table (the joint parameters)",
+                                         opt.name));
+        }
+    }
     if (kind == ElementKind::Composite6 && !second) {
         throw InputError({mesh.file, 0, 0}, "element",
                          fmt::format("body \"{}\": the composite element needs a mesh of 6-node "
@@ -268,6 +442,15 @@ MeshNodeMap add_bodies_mapped(Model& m, const MeshData& mesh, const std::vector<
         body.node_begin = m.num_nodes();
         body.tri_begin = m.num_tris();
         const BodyId bid = m.num_bodies();
+        if (opt.fracture) {
+            body.fracture = true;
+            add_jointed_nodes(m, mesh, tris, opt, bid, sub_triangles, local, map);
+            body.node_end = m.num_nodes();
+            body.tri_end = m.num_tris();
+            m.bodies.push_back(body);
+            set_initial_velocity(m, body, opt);
+            continue;
+        }
         for (int32_t t : tris) {
             std::array<std::array<int32_t, 3>, 4> sub{};
             const int ns = sub_triangles(t, sub);
@@ -294,8 +477,65 @@ MeshNodeMap add_bodies_mapped(Model& m, const MeshData& mesh, const std::vector<
         m.bodies.push_back(body);
         set_initial_velocity(m, body, opt);
     }
+    // Model::node_vertex: identity for every unsplit node once some body has fracture
+    if (!m.node_vertex.empty()) {
+        for (NodeId i = static_cast<NodeId>(m.node_vertex.size()); i < m.num_nodes(); ++i)
+            m.node_vertex.push_back(i);
+    }
     return out;
 }
+
+namespace {
+
+/// Joint laws, gather lists and the h_max check of the cohesive joints (theory §9).
+void finalize_fracture(Model& m) {
+    Joints& J = m.joints;
+    if (J.nodes.empty()) return;
+    // one law per material (index = material id, Joints::law), made for the materials with
+    // fracture only (the others are never referenced)
+    J.laws.assign(m.materials.size(), JointLaw{});
+    for (size_t k = 0; k < m.materials.size(); ++k) {
+        const Material& mat = m.materials[k];
+        if (!mat.has_fracture) continue;
+        try {
+            J.laws[k] = make_joint_law(mat.fracture);
+        } catch (const std::invalid_argument& e) {
+            throw InputError({}, "material.fracture",
+                             fmt::format("material \"{}\": {}", mat.name, e.what()));
+        }
+    }
+    // theory eq. 9.14: a joint longer than h_max = p G_I / (4 I_z f_t^2) has a softening branch
+    // shorter than 2 o_p (its snap-back would dissipate more than G_I); report the longest
+    std::vector<int32_t> worst(m.materials.size(), -1);
+    for (int32_t j = 0; j < J.num_joints(); ++j) {
+        const auto k = static_cast<size_t>(J.law[static_cast<size_t>(j)]);
+        if (worst[k] < 0 ||
+            J.length0[static_cast<size_t>(j)] > J.length0[static_cast<size_t>(worst[k])])
+            worst[k] = j;
+    }
+    for (size_t k = 0; k < m.materials.size(); ++k) {
+        if (worst[k] < 0) continue;
+        const Material& mat = m.materials[k];
+        const Real h = J.length0[static_cast<size_t>(worst[k])];
+        const Real h_max = joint_max_length(mat.fracture);
+        if (h > h_max && !mat.fracture.allow_coarse) {
+            const auto& n = J.nodes[static_cast<size_t>(worst[k])];
+            const Vec2 a = m.node_x0[static_cast<size_t>(n[0])];
+            const Vec2 b = m.node_x0[static_cast<size_t>(n[1])];
+            throw InputError(
+                {}, "material.fracture",
+                fmt::format("material \"{}\": joint {} from ({:.6g}, {:.6g}) to ({:.6g}, {:.6g}) "
+                            "is {:.4g} m long, more than h_max = p G_I / (4 I_z f_t^2) = {:.4g} m "
+                            "(theory eq. 9.14): its softening branch would be shorter than twice "
+                            "the elastic opening; refine the mesh, raise the penalty or set "
+                            "allow_coarse = true",
+                            mat.name, worst[k], a.x, a.y, b.x, b.y, h, h_max));
+        }
+    }
+    finalize_joints(J, m.num_nodes());
+}
+
+}  // namespace
 
 void finalize_model(Model& m) {
     std::vector<int32_t> node_new;
@@ -347,6 +587,7 @@ void finalize_model(Model& m, std::vector<int32_t>& node_new) {
         slot += ld.num_slots();
     }
 
+    finalize_fracture(m);
     resolve_contact_params(m);
     m.element_schedule = build_element_schedule(m);
 }
@@ -374,13 +615,24 @@ Real stable_time_step(const Model& m, const ContactTopology& t, TriId* limiting_
     TriId arg = kNone;
     const Real dte = element_stable_time_step(m, &arg);
     const Real dtc = contact_stable_dt(m, t);
-    if (dtc < dte) arg = kNone;
+    // cohesive joints: the Gershgorin bound of M^-1 K_joint (theory eq. 9.16)
+    const Real dtj = joint_critical_dt(m.joints, m.node_mass);
+    if (std::min(dtc, dtj) < dte) arg = kNone;
     if (limiting_tri) *limiting_tri = arg;
-    if (!std::isfinite(dte) || !std::isfinite(dtc)) return std::min(dte, dtc);
-    // element and contact stiffness act on the same boundary nodes: the largest eigenvalue of
-    // M^-1 (K_e + K_c) is at most the sum of theirs (Weyl), (2/dt)^2 <= (2/dte)^2 + (2/dtc)^2
-    // (theory eq. 6.17)
-    return 1.0 / std::sqrt(1.0 / (dte * dte) + 1.0 / (dtc * dtc));
+    // element, contact and joint stiffness act on the same nodes: the largest eigenvalue of
+    // M^-1 (K_e + K_c + K_j) is at most the sum of theirs (Weyl), so
+    // (2/dt)^2 <= (2/dte)^2 + (2/dtc)^2 + (2/dtj)^2 (theory eqs. 6.17, 9.21); an infinite bound
+    // (no contact, no joints) adds nothing
+    Real inv2 = 0;
+    int finite = 0;
+    for (const Real d : {dte, dtc, dtj}) {
+        if (!std::isfinite(d)) continue;
+        inv2 += 1.0 / (d * d);
+        ++finite;
+    }
+    // one finite bound: itself (bitwise what it was before joints existed)
+    if (finite <= 1) return std::min({dte, dtc, dtj});
+    return 1.0 / std::sqrt(inv2);
 }
 
 }  // namespace fdem

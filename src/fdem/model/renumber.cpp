@@ -106,6 +106,23 @@ bool renumber_spatially(Model& m, std::vector<int32_t>* node_new_out) {
     if (node_new_out) *node_new_out = node_new;
     if (!changed) return false;
 
+    // fracture: joint node ids follow; a vertex's representative is again its smallest copy
+    if (!m.node_vertex.empty()) {
+        std::vector<NodeId> best(nn, kNone);
+        for (size_t i = 0; i < nn; ++i) {
+            const auto r = static_cast<size_t>(m.node_vertex[i]);
+            const NodeId ni = node_new[i];
+            if (best[r] == kNone || ni < best[r]) best[r] = ni;
+        }
+        std::vector<NodeId> vertex(nn);
+        for (size_t i = 0; i < nn; ++i)
+            vertex[static_cast<size_t>(node_new[i])] = best[static_cast<size_t>(m.node_vertex[i])];
+        m.node_vertex = std::move(vertex);
+    }
+    for (auto& jn : m.joints.nodes) {
+        for (NodeId& n : jn)
+            n = node_new[static_cast<size_t>(n)];
+    }
     for (BoundaryCondition& bc : m.bcs) {
         for (NodeId& n : bc.nodes)
             n = node_new[static_cast<size_t>(n)];
