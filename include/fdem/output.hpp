@@ -73,12 +73,15 @@ private:
 class HistoryWriter {
 public:
     /// Creates (truncates) path and writes the header. Throws SimulationError if it cannot.
-    explicit HistoryWriter(const std::string& path);
+    /// fracture: the model has cohesive joints; the header gets the columns energy.joint,
+    /// energy.fracture, joints.softening, joints.broken, crack_length, fragments (write() fills
+    /// them when the Model has joints: construct with fracture = !m.joints.nodes.empty()).
+    explicit HistoryWriter(const std::string& path, bool fracture = false);
     /// Restart: keeps the header and the rows of an existing file with step <= resume_step
     /// (later rows came from the interrupted run and will be written again), takes the
     /// energy_error reference from its first row, and appends from there. A missing file is
     /// created as by the other constructor. Throws SimulationError if it cannot.
-    HistoryWriter(const std::string& path, int64_t resume_step);
+    HistoryWriter(const std::string& path, int64_t resume_step, bool fracture = false);
     ~HistoryWriter();
     HistoryWriter(const HistoryWriter&) = delete;
     HistoryWriter& operator=(const HistoryWriter&) = delete;

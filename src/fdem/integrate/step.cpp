@@ -3,6 +3,9 @@
 //   1. kicks due at t^n overwrite velocities
 //   2. clear forces
 //   3. internal forces of the triangles (elastic + viscous)          element/cst.cpp
+//   3b. cohesive joint forces, damage, breaking (theory §9)          fracture/joints.cpp
+//   3c. on steps where joints broke: sectors, fragments, contact topology of the dirty bodies,
+//       broad phase again                                             integrate/fracture_update.cpp
 //   4. contact forces (broad phase when the skin is exceeded, law)    contact/
 //      + the load forces of step 0
 //   5. gravity and mass-proportional damping
@@ -23,6 +26,8 @@
 #include "element/cst.hpp"
 #include "fdem/error.hpp"
 #include "fdem/simulate.hpp"
+#include "fracture/joints.hpp"
+#include "integrate/fracture_update.hpp"
 #include "integrate/loads.hpp"
 #include "integrate/node_update.hpp"
 
@@ -91,7 +96,9 @@ State make_state(const Model& m, Real dt) {
     s.scratch_sums.assign(
         std::max(4 * static_cast<size_t>(m.element_schedule.num_chunks()), kNodeSlots * n_blocks),
         0.0);
+    init_fracture_state(m, s);  // joint history, pre-broken joints, sectors, fragments
     init_contact_state(m, s);
+    if (!m.prebroken_joints.empty()) rebuild_fracture_views(m, s);  // topology with the cracks
     return s;
 }
 
@@ -223,6 +230,20 @@ void step(const Model& m, State& s) {
             fmt::format("element inverted (det F = {:.3g}); reduce dt (now {:.3g} s) or increase "
                         "the contact penalty",
                         pass.min_jacobian, dt));
+    }
+
+    // 3b. cohesive joints (theory eqs. 9.3-9.19): forces added to f, damage, work; E_joint and
+    // W_frac are evaluated only with need_energy, else they keep their last values (stale, like
+    // the strain energy)
+    if (!m.joints.nodes.empty()) {
+        const JointPass jp =
+            joint_forces(m.joints, s.joints, s.x, s.f, s.need_energy, s.step, s.time);
+        if (s.need_energy) {
+            s.energy.joint = jp.elastic_energy;  // eq. 9.18
+            s.energy.fracture = jp.fracture;     // eq. 9.19
+        }
+        // 3c. break processing (spec fracture.md §7): serial, only on steps with breaks
+        if (jp.newly_broken > 0) process_breaks(m, s);
     }
 
     // 4. contact forces (writes s.f, s.f_contact, s.energy.contact, dissipated_contact)

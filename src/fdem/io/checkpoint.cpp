@@ -12,6 +12,7 @@
 #include "fdem/error.hpp"
 #include "fdem/simulate.hpp"
 #include "fdem/version.hpp"
+#include "integrate/fracture_update.hpp"
 #include "io/atomic_file.hpp"
 
 namespace fdem {
@@ -120,6 +121,16 @@ void put(Sink& o, const ContactParams& p) {
 }
 
 template <class Sink>
+void put(Sink& o, const JointLaw& L) {
+    for (const Real r :
+         {L.ft, L.c, L.tan_phi, L.p, L.ps, L.GI, L.GII, L.Iz, L.half_p_over_ft, L.half_ps})
+        put(o, r);
+    put(o, L.curve);
+    put(o, L.length_rule);
+    put(o, L.failure_points);
+}
+
+template <class Sink>
 void put(Sink& o, const Energy& e) {
     put(o, e.time);
     put(o, e.kinetic);
@@ -150,6 +161,18 @@ void put_state(Sink& o, const State& s) {
     put(o, s.need_energy);
     put(o, s.bc_velocity);  // controls (since format 6)
     put(o, s.bc_enabled);
+    // joint history (since format 8; empty arrays without joints); node_sector, tri_fragment
+    // and the topology are rebuilt from it on restore
+    const JointState& js = s.joints;
+    put(o, js.d_max);
+    put(o, js.status);
+    put(o, js.mode_bits);
+    put(o, js.mode);
+    put(o, js.break_step);
+    put(o, js.work);
+    put(o, js.f_prev);
+    put(o, js.d_prev);
+    put(o, js.total_work);
     // scratch_bc_v, scratch_sums: rewritten before being read in every step (not saved)
 
     const ContactState& c = s.contact;
@@ -242,8 +265,17 @@ public:
             bytes(&b, 1);
             if (b > 1) fail("a flag is neither 0 nor 1 (corrupt file)");
             v = b != 0;
+        } else if constexpr (std::is_enum_v<T>) {
+            int32_t e = 0;  // written as int32 (put)
+            bytes(&e, sizeof e);
+            if (e < 0 || e > 255) fail("an enum value is out of range (corrupt file)");
+            v = static_cast<T>(e);
         } else if constexpr (std::is_arithmetic_v<T>) {
             bytes(&v, sizeof v);
+        } else if constexpr (std::is_same_v<T, std::array<Real, 3>> ||
+                             std::is_same_v<T, std::array<Real, 4>>) {
+            for (Real& e : v)
+                get(e);
         } else if constexpr (std::is_same_v<T, Vec2>) {
             get(v.x);
             get(v.y);
@@ -398,6 +430,20 @@ uint64_t model_hash(const Model& m, const ContactTopology& t, Real dt) {
     put(h, c.m_bar);
     put(h, c.deep_ratio_limit);
     put(h, c.scaling);
+    if (!m.joints.nodes.empty()) {
+        // fracture: the topology changes as joints break and is rebuilt from the saved joint
+        // state, so the hash takes the joints (from which it follows) instead
+        const Joints& J = m.joints;
+        put(h, J.nodes);
+        put(h, J.length0);
+        put(h, J.law);
+        put(h, static_cast<uint64_t>(J.laws.size()));
+        for (const JointLaw& L : J.laws)
+            put(h, L);
+        put(h, m.node_vertex);
+        put(h, m.prebroken_joints);
+        return h.h;
+    }
     put(h, t.node_scale);
     put(h, t.edge_scale);
     put(h, t.node_dist);
@@ -506,6 +552,24 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     r.get_sized(s.bc_enabled, m.bcs.size(), "bc_enabled");
     for (uint8_t e : s.bc_enabled) {
         if (e > 1) r.fail("a support's bc_enabled is neither 0 nor 1 (corrupt file)");
+    }
+    {
+        JointState& js = s.joints;
+        const size_t nj = static_cast<size_t>(m.joints.num_joints());
+        r.get_sized(js.d_max, nj, "joints.d_max");
+        r.get_sized(js.status, nj, "joints.status");
+        r.get_sized(js.mode_bits, nj, "joints.mode_bits");
+        r.get_sized(js.mode, nj, "joints.mode");
+        r.get_sized(js.break_step, nj, "joints.break_step");
+        r.get_sized(js.work, nj, "joints.work");
+        r.get_sized(js.f_prev, nj, "joints.f_prev");
+        r.get_sized(js.d_prev, nj, "joints.d_prev");
+        r.get(js.total_work);
+        for (size_t j = 0; j < nj; ++j) {
+            if (static_cast<uint8_t>(js.status[j]) > 2 || static_cast<uint8_t>(js.mode[j]) > 3)
+                r.fail("a joint status or mode is out of range (corrupt file)");
+        }
+        rebuild_fracture_views(m, s);  // sectors, fragments, topology of the saved cracks
     }
 
     ContactState& c = s.contact;

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 
 #include "fdem/error.hpp"
 #include "fdem/output.hpp"
@@ -15,21 +16,36 @@ namespace {
 constexpr const char* kHeader =
     "step,time,kinetic,strain,contact,work_gravity,work_external,dissipated_viscous,"
     "dissipated_contact,total,energy_error,active_contacts\n";
+/// Appended when the model has cohesive joints (spec fracture.md §9 output; docs/output.md).
+constexpr const char* kFractureColumns =
+    ",energy.joint,energy.fracture,joints.softening,joints.broken,crack_length,fragments";
+
+std::string header(bool fracture) {
+    std::string h = kHeader;
+    if (fracture) {
+        h.pop_back();  // '\n'
+        h += kFractureColumns;
+        h += '\n';
+    }
+    return h;
+}
 
 }  // namespace
 
-HistoryWriter::HistoryWriter(const std::string& path) : path_(path) {
+HistoryWriter::HistoryWriter(const std::string& path, bool fracture) : path_(path) {
     file_ = std::fopen(path.c_str(), "w");
-    if (file_ == nullptr || std::fputs(kHeader, file_) < 0 || std::fflush(file_) != 0) {
+    if (file_ == nullptr || std::fputs(header(fracture).c_str(), file_) < 0 ||
+        std::fflush(file_) != 0) {
         throw SimulationError(0, 0.0, path,
                               std::string("cannot write history file: ") + std::strerror(errno) +
                                   " (check that the output directory exists and is writable)");
     }
 }
 
-HistoryWriter::HistoryWriter(const std::string& path, int64_t resume_step) : path_(path) {
+HistoryWriter::HistoryWriter(const std::string& path, int64_t resume_step, bool fracture)
+    : path_(path) {
     // keep the rows up to resume_step (the step column is the first field)
-    std::string kept = kHeader;
+    std::string kept = header(fracture);
     if (std::FILE* in = std::fopen(path.c_str(), "r")) {
         char line[4096];
         bool header = true;
@@ -78,7 +94,7 @@ HistoryWriter::~HistoryWriter() {
     if (file_ != nullptr) std::fclose(file_);
 }
 
-void HistoryWriter::write(const Model& /*m*/, const State& s) {
+void HistoryWriter::write(const Model& m, const State& s) {
     const Energy& e = s.energy;
     const Real total = e.total();
 
@@ -88,11 +104,31 @@ void HistoryWriter::write(const Model& /*m*/, const State& s) {
         has_reference_ = true;
     }
     const int n =
-        std::fprintf(file_, "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n",
+        std::fprintf(file_, "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d",
                      static_cast<long long>(s.step), s.time, e.kinetic, e.strain, e.contact,
                      e.work_gravity, e.work_external, e.dissipated_viscous, e.dissipated_contact,
                      total, total - total0_, static_cast<int>(s.contact.active_contacts));
-    if (n < 0 || std::fflush(file_) != 0) {
+    int nf = 0;
+    if (!m.joints.nodes.empty()) {
+        // joint counts, crack length (sum of h_0 of the broken joints) and fragments (each is
+        // labelled by its smallest triangle, State::tri_fragment)
+        int64_t softening = 0, broken = 0;
+        Real crack = 0;
+        for (size_t j = 0; j < s.joints.status.size(); ++j) {
+            if (s.joints.status[j] == JointStatus::Softening) ++softening;
+            if (s.joints.status[j] == JointStatus::Broken) {
+                ++broken;
+                crack += m.joints.length0[j];
+            }
+        }
+        int64_t fragments = 0;
+        for (size_t t = 0; t < s.tri_fragment.size(); ++t)
+            fragments += s.tri_fragment[t] == static_cast<TriId>(t) ? 1 : 0;
+        nf = std::fprintf(file_, ",%.17g,%.17g,%lld,%lld,%.17g,%lld", e.joint, e.fracture,
+                          static_cast<long long>(softening), static_cast<long long>(broken), crack,
+                          static_cast<long long>(fragments));
+    }
+    if (n < 0 || nf < 0 || std::fputc('\n', file_) == EOF || std::fflush(file_) != 0) {
         throw SimulationError(s.step, s.time, path_,
                               std::string("cannot write history row: ") + std::strerror(errno));
     }

@@ -70,8 +70,10 @@ struct Simulation::Impl {
         const fs::path out = out_dir;
         if (!restart_from.empty()) adopt_earlier_output();
         history = restarted
-                      ? std::make_unique<HistoryWriter>((out / "history.csv").string(), state.step)
-                      : std::make_unique<HistoryWriter>((out / "history.csv").string());
+                      ? std::make_unique<HistoryWriter>((out / "history.csv").string(), state.step,
+                                                        !model.joints.nodes.empty())
+                      : std::make_unique<HistoryWriter>((out / "history.csv").string(),
+                                                        !model.joints.nodes.empty());
         // bodies.csv: resultants, reactions and mean motion per body entry and boundary group
         const int64_t resume = restarted ? state.step : -1;
         if (run.output.bodies) {
