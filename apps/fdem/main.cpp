@@ -77,6 +77,39 @@ size_t memory_estimate(const fdem::Model& m) {
     return model + state;
 }
 
+// Broken joints per mode, W_frac and the fracture-energy audit (docs/theory.md eq. 9.20):
+// Gamma = W_frac / broken length, and per mode the work of its broken joints over their length.
+void print_fracture_summary(const fdem::Model& m, const fdem::State& s) {
+    const fdem::Joints& J = m.joints;
+    const fdem::JointState& js = s.joints;
+    int64_t broken[4] = {0, 0, 0, 0}, softening = 0;  // by JointMode
+    double work[4] = {0, 0, 0, 0}, length[4] = {0, 0, 0, 0};
+    for (size_t j = 0; j < js.status.size(); ++j) {
+        if (js.status[j] == fdem::JointStatus::Softening) ++softening;
+        if (js.status[j] != fdem::JointStatus::Broken) continue;
+        const auto k = static_cast<size_t>(js.mode[j]);  // None: pre-broken
+        ++broken[k];
+        work[k] += js.work[j];
+        length[k] += J.length0[j];
+    }
+    const int64_t n_broken = broken[0] + broken[1] + broken[2] + broken[3];
+    const double crack = length[1] + length[2] + length[3];  // pre-broken joints excluded
+    fmt::print(
+        "fracture   {} of {} joints broken (mode I {}, II {}, mixed {}; {} pre-broken), "
+        "{} softening; crack length {:.6g} m; E_joint {:.6g}, W_frac {:.6g} J/m\n",
+        n_broken, J.num_joints(), broken[1], broken[2], broken[3], broken[0], softening, crack,
+        s.energy.joint, s.energy.fracture);
+    if (crack > 0) {
+        auto gamma = [&](size_t k) {
+            return length[k] > 0 ? fmt::format("{:.6g}", work[k] / length[k]) : std::string("-");
+        };
+        fmt::print(
+            "Gamma      W_frac / crack length {:.6g} J/m^2; per mode sum W_J / sum h0 "
+            "(eq. 9.20): I {}, II {}, mixed {} J/m^2\n",
+            s.energy.fracture / crack, gamma(1), gamma(2), gamma(3));
+    }
+}
+
 void print_summary(const fdem::Scenario& sc) {
     const fdem::Model& m = sc.model;
     size_t fixed = 0;
@@ -316,6 +349,7 @@ int run(const RunOptions& opt) {
             "energy     kinetic {:.6g}, strain {:.6g}, contact {:.6g}, dissipated {:.6g} J/m\n",
             s.energy.kinetic, s.energy.strain, s.energy.contact,
             s.energy.dissipated_viscous + s.energy.dissipated_contact);
+        if (!m.joints.nodes.empty()) print_fracture_summary(m, s);
         const fdem::EnergyMonitor& e = sim.energy_monitor();
         fmt::print(
             "balance    max |E_total - E_0| = {:.3g} J/m = {:.3g} % of the energy scale "

@@ -518,7 +518,9 @@ void finalize_fracture(Model& m) {
         const Material& mat = m.materials[k];
         const Real h = J.length0[static_cast<size_t>(worst[k])];
         const Real h_max = joint_max_length(mat.fracture);
-        if (h > h_max && !mat.fracture.allow_coarse) {
+        // eq. 9.14 is the well-posedness of the "exact" rule (the others set their own lengths)
+        if (mat.fracture.softening_length == SofteningLength::Exact && h > h_max &&
+            !mat.fracture.allow_coarse) {
             const auto& n = J.nodes[static_cast<size_t>(worst[k])];
             const Vec2 a = m.node_x0[static_cast<size_t>(n[0])];
             const Vec2 b = m.node_x0[static_cast<size_t>(n[1])];

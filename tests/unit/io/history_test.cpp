@@ -137,3 +137,45 @@ TEST(HistoryWriter, UnwritablePathIsASimulationError) {
 
 }  // namespace
 }  // namespace fdem
+
+namespace fdem {
+namespace {
+
+// A model with joints: six more columns after the pinned ones, with the joint energy, W_frac,
+// softening and broken counts, the crack length (sum of h_0 of broken joints) and the number of
+// fragments (triangles that label their own fragment).
+TEST(History, FractureColumns) {
+    const fs::path dir = fs::path(::testing::TempDir()) / "fdem_history_fracture";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path p = dir / "history.csv";
+    Model m;
+    m.joints.nodes = {{0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3}};
+    m.joints.length0 = {0.5, 0.25, 2.0};
+    State s;
+    s.energy.joint = 0.125;
+    s.energy.fracture = 3.5;
+    s.joints.status = {JointStatus::Broken, JointStatus::Softening, JointStatus::Broken};
+    s.tri_fragment = {0, 0, 2, 3, 3};
+    {
+        HistoryWriter w(p.string(), true);
+        w.write(m, s);
+    }
+    const std::vector<std::string> lines = read_lines(p);
+    ASSERT_EQ(lines.size(), 2u);
+    const std::vector<std::string> head = split(lines[0]);
+    const std::vector<std::string> row = split(lines[1]);
+    ASSERT_EQ(head.size(), 18u);
+    ASSERT_EQ(row.size(), 18u);
+    EXPECT_EQ(head[11], "active_contacts");
+    const std::vector<std::string> cols = {"energy.joint",   "energy.fracture", "joints.softening",
+                                           "joints.broken",  "crack_length",    "fragments"};
+    const std::vector<std::string> vals = {"0.125", "3.5", "1", "2", "2.5", "3"};
+    for (size_t k = 0; k < 6; ++k) {
+        EXPECT_EQ(head[12 + k], cols[k]);
+        EXPECT_EQ(row[12 + k], vals[k]) << cols[k];
+    }
+}
+
+}  // namespace
+}  // namespace fdem

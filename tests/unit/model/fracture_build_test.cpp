@@ -6,9 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
+#include <random>
 #include <set>
 
+#include "element/cst.hpp"
 #include "fdem/build.hpp"
 #include "fdem/error.hpp"
 #include "fracture/joints.hpp"
@@ -239,6 +242,12 @@ TEST(FractureBuild, Errors) {
         }
     }
     {
+        Model m = jointed_material();  // y-geo sets its own softening length: no h_max
+        m.materials[0].fracture.softening_length = SofteningLength::YGeo;
+        add_bodies(m, coarse, all_tris(coarse), fracture_options());
+        EXPECT_NO_THROW(finalize_model(m));
+    }
+    {
         Model m = jointed_material();
         m.materials[0].fracture.allow_coarse = true;
         add_bodies(m, coarse, all_tris(coarse), fracture_options());
@@ -325,6 +334,63 @@ TEST(FractureBuild, RenumberedBodyKeepsJoints) {
             ASSERT_NE(m.node_vertex[static_cast<size_t>(k)], r);
         if (n > 300) break;
     }
+}
+
+// stable_time_step of a jointed body (theory eq. 9.21): the largest omega^2 of M^-1 (K_e + K_j),
+// by power iteration with the element and joint kernels' own forces about the reference state,
+// stays below (2/dt)^2; the minimum of the element and joint bounds would not bound it.
+TEST(FractureBuild, StableTimeStepBoundsElementsAndJoints) {
+    const MeshData mesh = make_rectangle_mesh(0, 0, 0.06, 0.06, 6, 6, true);
+    Model m = jointed_material();
+    const Real p = 8e8;                   // the joint bound equals the element bound
+    m.materials[0].fracture.penalty = p;  // joints and elements of similar frequency
+    m.materials[0].fracture.shear_penalty = p;
+    m.materials[0].fracture.fracture_energy_I = 1000;  // h_max
+    add_bodies(m, mesh, all_tris(mesh), fracture_options());
+    finalize_model(m);
+    const Real dt = stable_time_step(m);
+    const Real dte = element_stable_time_step(m);
+    const Real dtj = joint_critical_dt(m.joints, m.node_mass);
+    const size_t nn = static_cast<size_t>(m.num_nodes());
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> U(-1, 1);
+    std::vector<Vec2> u(nn), x(nn), fp(nn), fm(nn), v0(nn);
+    for (auto& w : u)
+        w = {U(rng), U(rng)};
+    const double eps = 1e-9;
+    double lambda = 0;
+    for (int it = 0; it < 600; ++it) {
+        double un = 0;
+        for (auto& w : u)
+            un = std::max(un, norm(w));
+        for (auto& w : u)
+            w = w / un;
+        for (int sgn : {1, -1}) {
+            JointState js = make_joint_state(m.joints);
+            for (size_t i = 0; i < nn; ++i)
+                x[i] = m.node_x0[i] + (sgn * eps) * u[i];
+            auto& ff = sgn > 0 ? fp : fm;
+            ff.assign(nn, Vec2{0, 0});
+            add_internal_forces(m, x.data(), v0.data(), ff.data(), 0, m.num_tris());
+            joint_forces(m.joints, js, x, ff, false);
+        }
+        double num = 0, den = 0;
+        for (size_t i = 0; i < nn; ++i) {
+            const Vec2 ku = (-1.0 / (2 * eps)) * (fp[i] - fm[i]);
+            num += dot(u[i], ku);
+            den += m.node_mass[i] * dot(u[i], u[i]);
+            u[i] = ku / m.node_mass[i];
+        }
+        lambda = num / den;
+    }
+    const double bound = 4.0 / (dt * dt);
+    const double min_bound = 4.0 / std::pow(std::min(dte, dtj), 2);
+    std::printf(
+        "[ dt ] dt_e %.4g s, dt_joint %.4g s, dt %.4g s; omega^2 / (2/dt)^2 = %.4f, "
+        "omega^2 / (2/min(dt_e, dt_joint))^2 = %.4f\n",
+        dte, dtj, dt, lambda / bound, lambda / min_bound);
+    EXPECT_LE(lambda, bound);
+    EXPECT_GT(lambda, min_bound);  // the minimum alone would be unstable here
 }
 
 }  // namespace
