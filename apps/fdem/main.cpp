@@ -20,13 +20,16 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <string>
 
 #include <fmt/format.h>
 #include <omp.h>
 #include <CLI/CLI.hpp>
 
+#include "contact/contact.hpp"
 #include "fdem/fdem.hpp"
+#include "fracture/joints.hpp"
 
 namespace {
 
@@ -67,14 +70,95 @@ struct RunOptions {
     double progress_every = 30;  ///< wall seconds between progress lines when stderr is no tty
 };
 
-// Rough resident size of the model and state [bytes], for `fdem check`.
+// Rough resident size of the model and state [bytes], for `fdem check`; with fracture the
+// joint arrays (Model::joints, node_vertex; State::joints, tri_fragment, node_sector) too.
 size_t memory_estimate(const fdem::Model& m) {
     const size_t nn = static_cast<size_t>(m.num_nodes()), nt = static_cast<size_t>(m.num_tris());
     const size_t model =
         nn * (2 * sizeof(fdem::Vec2) + 2 * sizeof(double) + sizeof(int32_t)) +
         nt * (3 * sizeof(int32_t) + 2 * sizeof(int32_t) + sizeof(fdem::Mat2) + 2 * sizeof(double));
     const size_t state = nn * 4 * sizeof(fdem::Vec2);
-    return model + state;
+    const size_t nj = static_cast<size_t>(m.joints.num_joints());
+    if (nj == 0) return model + state;
+    const size_t joint_model = nj * (sizeof(std::array<fdem::NodeId, 4>) + sizeof(double) +
+                                     sizeof(int32_t) + 4 * 2 * sizeof(int32_t)) +  // + gather
+                               nn * sizeof(fdem::NodeId);                          // node_vertex
+    const size_t joint_state = nj * (3 * sizeof(double) + 3 + sizeof(int64_t) + sizeof(double) +
+                                     8 * sizeof(double) + 2 * sizeof(fdem::Vec2)) +
+                               nt * sizeof(int32_t) +
+                               nn * sizeof(int32_t);  // tri_fragment, node_sector
+    return model + state + joint_model + joint_state;
+}
+
+// Per fracture material: joint count and lengths, the law's lengths at the mean joint length,
+// l_ch, E_eff; then the time-step limits of elements, joints and contact (docs/theory.md §9).
+void print_fracture(const fdem::Scenario& sc) {
+    const fdem::Model& m = sc.model;
+    const fdem::Joints& J = m.joints;
+    if (J.num_joints() == 0) return;
+    for (size_t mi = 0; mi < m.materials.size(); ++mi) {
+        const fdem::Material& mat = m.materials[mi];
+        if (!mat.has_fracture) continue;
+        size_t count = 0;
+        double h_min = std::numeric_limits<double>::infinity(), h_max = 0, h_sum = 0;
+        for (int32_t j = 0; j < J.num_joints(); ++j) {
+            const fdem::NodeId n0 = J.nodes[static_cast<size_t>(j)][0];
+            const fdem::BodyId b = m.node_body[static_cast<size_t>(n0)];
+            if (m.bodies[static_cast<size_t>(b)].material != static_cast<int32_t>(mi)) continue;
+            const double h = J.length0[static_cast<size_t>(j)];
+            ++count;
+            h_min = std::min(h_min, h);
+            h_max = std::max(h_max, h);
+            h_sum += h;
+        }
+        if (count == 0) continue;
+        const fdem::JointMaterial& jm = mat.fracture;
+        const double h = h_sum / static_cast<double>(count);
+        const double ft = jm.tensile_strength, p = jm.penalty;
+        const double o_p = 2 * h * ft / p;                          // eq. 9.4
+        const double s_p = 2 * h * jm.cohesion / jm.shear_penalty;  // eq. 9.4, f_s = c
+        const double iz = fdem::softening_integral(jm.softening);   // eq. 9.11
+        const double GI = jm.fracture_energy_I;
+        double soft = GI / (iz * ft);  // eq. 9.12, "exact"
+        const char* rule = "exact";
+        switch (jm.softening_length) {
+            case fdem::SofteningLength::Exact:
+                break;
+            case fdem::SofteningLength::Total:
+                soft = (GI - 2.0 / 3.0 * ft * o_p) / (iz * ft);
+                rule = "total";
+                break;
+            case fdem::SofteningLength::YGeo:
+                soft = 3 * GI / ft;
+                rule = "y-geo";
+                break;
+            case fdem::SofteningLength::Solidity:
+                soft = std::max(2 * o_p, 3 * GI / ft);
+                rule = "solidity";
+                break;
+        }
+        const double E = mat.youngs_modulus;
+        const double e_eff = fdem::joint_effective_modulus(E, p);  // eq. 9.6
+        fmt::print(
+            "fracture   material \"{}\": {} joints, h {:.4g} .. {:.4g} m (mean {:.4g} m), "
+            "h_max {:.4g} m (eq. 9.14){}\n",
+            mat.name, count, h_min, h_max, h, fdem::joint_max_length(jm),
+            jm.allow_coarse ? ", allow_coarse" : "");
+        fmt::print(
+            "           at the mean h: o_p {:.4g} m, s_p {:.4g} m (eq. 9.4), o_r - o_p "
+            "{:.4g} m (\"{}\", eq. 9.12); penalty {:.4g} Pa, shear {:.4g} Pa\n",
+            o_p, s_p, soft, rule, p, jm.shear_penalty);
+        fmt::print(
+            "           l_ch = E G_I/f_t^2 = {:.4g} m; E_eff = E/(1 + 2E/p) = {:.4g} Pa = "
+            "{:.3f} E (eq. 9.6, structured mesh)\n",
+            E * GI / (ft * ft), e_eff, e_eff / E);
+    }
+    const double dt_e = fdem::element_stable_time_step(m);
+    const double dt_j = fdem::joint_critical_dt(J, m.node_mass);  // eq. 9.16
+    const fdem::ContactTopology topo = fdem::build_topology(m);
+    const double dt_c = fdem::contact_stable_dt(m, topo);
+    fmt::print("dt limits  elements {:.4g} s, joints {:.4g} s (eq. 9.16), contact {}\n", dt_e, dt_j,
+               std::isfinite(dt_c) ? fmt::format("{:.4g} s", dt_c) : std::string("none"));
 }
 
 // Broken joints per mode, W_frac and the fracture-energy audit (docs/theory.md eq. 9.20):
@@ -147,13 +231,19 @@ void print_summary(const fdem::Scenario& sc) {
                    sc.run.stable_dt, sc.run.limiting_tri,
                    m.materials[m.tri_material[sc.run.limiting_tri]].name);
     } else {
-        fmt::print("stable dt  {:.4g} s (limited by the contact penalty)\n", sc.run.stable_dt);
+        const bool joints = fdem::joint_critical_dt(m.joints, m.node_mass) <
+                            fdem::contact_stable_dt(m, fdem::build_topology(m));
+        fmt::print("stable dt  {:.4g} s (limited by the {})\n", sc.run.stable_dt,
+                   joints ? "cohesive joints" : "contact penalty");
     }
     fmt::print("dt         {:.4g} s{}\n", sc.run.dt,
                sc.run.dt_auto ? fmt::format(" (auto: {:.3g} x stable)", sc.run.dt_fraction) : "");
     fmt::print("end time   {:.6g} s ({} steps)\n", sc.run.end_time,
                static_cast<long long>(std::ceil(sc.run.end_time / sc.run.dt - 1e-9)));
-    fmt::print("memory     {:.2f} MB (model + state, estimate)\n", memory_estimate(m) / 1e6);
+    fmt::print("memory     {:.2f} MB (model + state, estimate; {:.0f} B per triangle)\n",
+               memory_estimate(m) / 1e6,
+               static_cast<double>(memory_estimate(m)) / std::max(1, m.num_tris()));
+    print_fracture(sc);
 
     // contact: which algorithm and why; which bodies it sees (two fixed bodies never interact)
     const char* alg =

@@ -80,6 +80,15 @@ add_test(NAME cli.check_lists_loads
 set_tests_properties(cli.check_lists_loads PROPERTIES LABELS input
   PASS_REGULAR_EXPRESSION "load       ring/outer: pressure 1e\\+07 Pa on 64 edge\\(s\\), 6.28[0-9] m, ramp over 0.005 s")
 
+# ---- fracture: fdem check prints the joint numbers (docs/scenario.md; values by hand for example
+# 07: h = 0.02 m / 5, p = 10 E = 5e11 Pa: o_p = 2 h f_t/p = 1.6e-7 m, s_p = 2 h c/p_s = 4.8e-7 m,
+# o_r - o_p = G_I/(I_z f_t) = 50/(0.38631 x 1e7) = 1.2943e-5 m, h_max = p G_I/(4 I_z f_t^2) =
+# 0.1618 m, l_ch = E G_I/f_t^2 = 0.025 m, E_eff/E = 1/(1 + 2/10) = 0.833)
+add_test(NAME cli.check_prints_fracture
+         COMMAND fdem_cli check ${PROJECT_SOURCE_DIR}/examples/07_pull_apart/scenario.toml)
+set_tests_properties(cli.check_prints_fracture PROPERTIES LABELS input
+  PASS_REGULAR_EXPRESSION "fracture   material \"rock\": 5 joints, h 0.004 \\.\\. 0.004 m \\(mean 0.004 m\\), h_max 0.1618 m \\(eq. 9.14\\)\n +at the mean h: o_p 1.6e-07 m, s_p 4.8e-07 m \\(eq. 9.4\\), o_r - o_p 1.294e-05 m \\(\"exact\", eq. 9.12\\)[^\n]*\n +l_ch = E G_I/f_t\\^2 = 0.025 m; E_eff = E/\\(1 \\+ 2E/p\\) = 4.167e\\+10 Pa = 0.833 E[^\n]*\ndt limits  elements [0-9.e+-]+ s, joints [0-9.e+-]+ s \\(eq. 9.16\\), contact none")
+
 # ---- batch output: progress lines when stderr is no terminal, line-buffered stdout, bodies.csv
 add_test(NAME cli.batch_progress_and_bodies_csv
          COMMAND ${cli_dir}/progress.sh $<TARGET_FILE:fdem_cli> ${cli_dir}/restart.toml

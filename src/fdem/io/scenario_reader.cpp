@@ -22,6 +22,7 @@
 #include "fdem/error.hpp"
 #include "fdem/mesh.hpp"
 #include "fdem/scenario.hpp"
+#include "fracture/joints.hpp"
 #include "io/toml_fields.hpp"
 #include "model/renumber.hpp"
 
@@ -903,8 +904,10 @@ private:
     }
 
     /// Joint lengths against the softening rule of their material (docs/theory.md §9.3): with
-    /// "exact", h <= h_max (eq. 9.14) unless allow_coarse; with "total", the softening branch
-    /// must have a positive length, G_I > (2/3) f_t o_p = (4/3) h f_t^2 / p (eqs. 9.4, 9.12).
+    /// "total", the softening branch must have a positive length, G_I > (2/3) f_t o_p =
+    /// (4/3) h f_t^2 / p (eqs. 9.4, 9.12); with "exact", h <= h_max (eq. 9.14, its
+    /// well-posedness) unless allow_coarse, as finalize_model() requires (here with the location
+    /// of the table).
     void check_joint_lengths(const Model& m) const {
         for (const auto& [mi, longest] : longest_joint_) {
             const auto& [h, body] = longest;
@@ -914,18 +917,6 @@ private:
             Fields f(src_, t, fmt::format("material \"{}\" [material.fracture]", mat.name),
                      fmt::format("material[{}].fracture", mi), kMaterialFractureKeys);
             const Real ft = j.tensile_strength;
-            if (j.softening_length == SofteningLength::Exact && !j.allow_coarse) {
-                const Real h_max = joint_max_length(j);  // eq. 9.14
-                if (h > h_max) {
-                    f.fail_table(fmt::format(
-                        "the longest joint (h = {:.4g} m, in body \"{}\") is longer than h_max = "
-                        "p G_I / (4 I_z f_t^2) = {:.4g} m (docs/theory.md eq. 9.14), so its "
-                        "softening branch would be shorter than 2 o_p; refine the mesh to "
-                        "h <= {:.4g} m, raise penalty or fracture_energy_I, or set allow_coarse "
-                        "= true",
-                        h, body, h_max, h_max));
-                }
-            }
             if (j.softening_length == SofteningLength::Total) {
                 const Real elastic = 4.0 / 3.0 * h * ft * ft / j.penalty;  // (2/3) f_t o_p
                 if (!(j.fracture_energy_I > elastic)) {
@@ -937,6 +928,18 @@ private:
                                        "pre-peak branch alone dissipates more than G_I); refine "
                                        "the mesh, raise penalty, or use \"exact\"",
                                        h, body, elastic, j.fracture_energy_I));
+                }
+            }
+            if (j.softening_length == SofteningLength::Exact && !j.allow_coarse) {
+                const Real h_max = joint_max_length(j);  // eq. 9.14
+                if (h > h_max) {
+                    f.fail_table(fmt::format(
+                        "the longest joint (h = {:.4g} m, in body \"{}\") is longer than h_max = "
+                        "p G_I / (4 I_z f_t^2) = {:.4g} m (docs/theory.md eq. 9.14: the exact "
+                        "softening branch would be shorter than 2 o_p); refine the mesh to "
+                        "h <= {:.4g} m, raise penalty or fracture_energy_I, or set allow_coarse "
+                        "= true",
+                        h, body, h_max, h_max));
                 }
             }
         }
@@ -1699,6 +1702,8 @@ private:
         const Real stable = stable_time_step(m, topo_, &tri);
         run.stable_dt = stable;
         run.limiting_tri = tri;
+        // the cohesive joints' own bound (theory eq. 9.16); +inf without joints
+        const Real joint_dt = joint_critical_dt(m.joints, m.node_mass);
         const std::string line = src_.line(dt_loc_.line);
         std::string limit;  // what sets the stable limit, for messages
         if (tri != kNone) {
@@ -1711,6 +1716,17 @@ private:
                 "= {:g} Pa, density = {:g} kg/m^3)",
                 tri, c.x, c.y, m.bodies[static_cast<size_t>(m.tri_body[t])].name, mat.name,
                 mat.youngs_modulus, mat.density);
+        } else if (joint_dt < contact_stable_dt(m, topo_)) {
+            Real p = 0;
+            for (const Material& mat : m.materials) {
+                if (mat.has_fracture) {
+                    p = std::max({p, mat.fracture.penalty, mat.fracture.shear_penalty});
+                }
+            }
+            limit = fmt::format(
+                "the cohesive joints (largest penalty p = {:g} Pa; docs/theory.md "
+                "eq. 9.16)",
+                p);
         } else {
             Real kn = m.contact.params.penalty;
             for (const ContactParams& p : m.contact.resolved) {
@@ -1731,9 +1747,16 @@ private:
                 // default: 0.5 of the element limit (eq. 5.3) but 0.2 of the contact limit
                 // (eq. 6.15): the linear bound of the contact is right (0.90 of 2 / omega_max
                 // measured by power iteration), but a penalty spring that switches on and off
-                // gains energy at omega_max dt ~ 0.9 (docs/theory.md §6.9)
+                // gains energy at omega_max dt ~ 0.9 (docs/theory.md §6.9). With joints the
+                // element limit is that of elements and joints together, which act on the
+                // same nodes (Weyl: 1/dt^2 adds up, eqs. 6.17, 9.16)
                 const Real contact = contact_stable_dt(m, topo_);
-                const Real element = element_stable_time_step(m);
+                Real element = element_stable_time_step(m);
+                if (std::isfinite(joint_dt)) {
+                    element = std::isfinite(element) ? 1.0 / std::sqrt(1.0 / (element * element) +
+                                                                       1.0 / (joint_dt * joint_dt))
+                                                     : joint_dt;
+                }
                 run.dt =
                     std::min(kDefaultElementFraction * element, kDefaultContactFraction * contact);
                 run.dt_fraction = run.dt / stable;
@@ -1757,6 +1780,8 @@ private:
                     "\"{}\"",
                     tri, c.x, c.y, b.name,
                     m.materials[static_cast<size_t>(m.tri_material[t])].name);
+            } else if (joint_dt < contact_stable_dt(m, topo_)) {
+                what = "cohesive joint penalty";
             } else {
                 what = "contact penalty";
             }

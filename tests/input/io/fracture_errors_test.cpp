@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "fdem/error.hpp"
+#include "fdem/mesh.hpp"
 #include "fdem/scenario.hpp"
 #include "support/input_errors.hpp"
 
@@ -131,6 +132,74 @@ TEST(FractureInput, EveryOptionalKey) {
     EXPECT_EQ(s3.run.fracture.output_joints, JointOutput::None);
 }
 
+/// Line elements of the curve group `name` of tests/data/jointed_blocks.geo at mesh_size 0.25.
+size_t curve_edges(const std::string& name) {
+    const MeshData mesh = read_mesh(kData + "/jointed_blocks.geo", 0.25);
+    size_t n = 0;
+    for (const PhysicalGroup& g : mesh.groups) {
+        if (g.name == name && g.dim == 1) n += g.elements.size();
+    }
+    return n;
+}
+
+TEST(FractureInput, GroupsReachTheModel) {
+    // a curve fracture_group: joints on its edges only; prebroken: those joints broken at t = 0
+    const Scenario sc = load(edit("material = \"rock\"",
+                                  "material = \"rock\"\nfracture_group = \"joint\"\n"
+                                  "prebroken = [\"notch\"]"));
+    ASSERT_EQ(sc.model.num_bodies(), 1);
+    EXPECT_TRUE(sc.model.bodies[0].fracture);
+    EXPECT_EQ(static_cast<size_t>(sc.model.joints.num_joints()), curve_edges("joint"));
+    EXPECT_EQ(sc.model.prebroken_joints.size(), curve_edges("notch"));
+    EXPECT_GT(curve_edges("notch"), 0u);
+    EXPECT_LT(curve_edges("notch"), curve_edges("joint"));
+    // a surface fracture_group: joints only between its triangles, none on the joint line
+    const Scenario upper =
+        load(edit("material = \"rock\"", "material = \"rock\"\nfracture_group = \"upper\""));
+    const Model& m = upper.model;
+    ASSERT_GT(m.joints.num_joints(), 0);
+    for (int32_t j = 0; j < m.joints.num_joints(); ++j) {
+        for (const NodeId n : m.joints.nodes[static_cast<size_t>(j)])
+            EXPECT_GE(m.node_x0[static_cast<size_t>(n)].y, 0.5) << "joint " << j;
+    }
+    // fracture = false: no joints
+    EXPECT_EQ(load(edit("material = \"rock\"", "material = \"rock\"\nfracture = false"))
+                  .model.joints.num_joints(),
+              0);
+}
+
+TEST(FractureInput, SupportsAndLoadsTakeEveryNodeCopy) {
+    // every internal edge jointed: each vertex has one node copy per triangle around it; the
+    // support on "bottom" must hold all copies of its vertices, the traction on "top" finds the
+    // top edges on the split mesh, a probe group takes every copy
+    const Scenario sc = load(kBase +
+                             "\n[[load]]\nbody = \"blocks\"\ngroup = \"top\"\n"
+                             "traction = [0.0, 1.0e6]\n"
+                             "\n[[probe]]\nname = \"corner\"\nbody = \"blocks\"\n"
+                             "group = \"corner\"\n");
+    const Model& m = sc.model;
+    ASSERT_GT(m.joints.num_joints(), 0);
+    ASSERT_EQ(m.num_nodes(), 3 * m.num_tris());  // every triangle its own nodes
+    size_t on_bottom = 0, at_corner = 0;
+    for (const Vec2& x : m.node_x0) {
+        on_bottom += x.y == 0.0 ? 1 : 0;
+        at_corner += x.x == 0.0 && x.y == 0.0 ? 1 : 0;
+    }
+    ASSERT_EQ(m.bcs.size(), 1u);
+    EXPECT_EQ(m.bcs[0].nodes.size(), on_bottom);
+    for (const NodeId n : m.bcs[0].nodes)
+        EXPECT_EQ(m.node_x0[static_cast<size_t>(n)].y, 0.0);
+    ASSERT_EQ(m.loads.size(), 1u);
+    EXPECT_EQ(m.loads[0].edges.size(), curve_edges("top"));
+    double length = 0;
+    for (const double l : m.loads[0].edge_length0)
+        length += l;
+    EXPECT_NEAR(length, 1.0, 1e-12);
+    ASSERT_EQ(sc.run.output.probes.size(), 1u);
+    EXPECT_EQ(sc.run.output.probes[0].nodes.size(), at_corner);
+    EXPECT_GE(at_corner, 1u);
+}
+
 TEST(FractureInput, UnknownKeySuggestsTheClosest) {
     EXPECT_THAT(what_of(edit("tensile_strength = 1.0e7", "tensile_strenght = 1.0e7")),
                 StartsWith("bad.toml:12:1: error: material \"rock\" [material.fracture]: "
@@ -249,14 +318,16 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"poisson_ratio = 0.3", "poisson_ratio = 0.3\nfracture = 1.0",
              "bad.toml:23:12: error: material \"steel\": fracture must be a table (write "
              "[material.fracture] on its own line after the material's keys), got a number 1"},
-        // joint lengths against the softening rule (theory eqs. 9.12, 9.14); h = 0.125 m here
+        // joint lengths against the softening rule (theory eqs. 9.12, 9.14); the longest internal
+        // edge of the mesh is h = 0.1443 m
         Case{"fracture_energy_I = 50.0", "fracture_energy_I = 5.0",
              "bad.toml:11:1: error: material \"rock\" [material.fracture]: the longest joint (h = "
              "0.1443 m, in body \"blocks\") is longer than h_max = p G_I / (4 I_z f_t^2) = 0.01618 "
-             "m (docs/theory.md eq. 9.14), so its softening branch would be shorter than 2 o_p; "
+             "m (docs/theory.md eq. 9.14: the exact softening branch would be shorter than 2 o_p); "
              "refine the mesh to h <= 0.01618 m, raise penalty or fracture_energy_I, or set "
              "allow_coarse = true"},
         Case{"fracture_energy_I = 50.0", "fracture_energy_I = 5.0\nallow_coarse = true", ""},
+        // eq. 9.14 is the well-posedness of "exact"; the other rules take such joints
         Case{"fracture_energy_I = 50.0", "fracture_energy_I = 5.0\nsoftening_length = \"y-geo\"",
              ""},
         Case{"fracture_energy_I = 50.0",
