@@ -8,6 +8,7 @@ set(FDEM_EXAMPLES
   "04_particles             2.0e-5"
   "05_composite             2.0e-3"
   "06_pressurised_ring      0.03"
+  "07_pull_apart            2.0e-4"
 )
 foreach(entry ${FDEM_EXAMPLES})
   string(REGEX REPLACE " +" ";" parts "${entry}")

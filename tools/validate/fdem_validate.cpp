@@ -26,6 +26,7 @@
 #include "validation/cases/field_maps.hpp"
 #include "validation/cases/hertz.hpp"
 #include "validation/cases/legacy_sliding.hpp"
+#include "validation/cases/pull_apart.hpp"
 #include "validation/cases/sensitivity.hpp"
 #include "validation/cases/sliding_block.hpp"
 
@@ -94,7 +95,7 @@ int main(int argc, char** argv) {
         } else {
             std::fprintf(stderr,
                          "usage: fdem_validate [--quick] [--out DIR] [--only "
-                         "block,disk,slide,field,hertz,sensitivity,legacy,composite,...]\n");
+                         "block,disk,slide,field,hertz,sensitivity,legacy,composite,pull_apart,...]\n");
             return 2;
         }
     }
@@ -157,6 +158,9 @@ int main(int argc, char** argv) {
         add_case("composite", composite_dynamics_suite(quick ? CompositeDynamicsOptions::quick()
                                                              : CompositeDynamicsOptions::full(),
                                                        out));
+
+    // spec fracture.md §11 V1 (examples/07_pull_apart): the same run in both modes (60 triangles)
+    if (want("pull_apart")) add_case("pull_apart", pull_apart_suite(out));
 
     for (const std::string& n : only) {
         if (ran.count(n) == 0) {
