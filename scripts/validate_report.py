@@ -380,7 +380,12 @@ def fig_pull_apart(data, docs):
         return None
     d = read(path)
     fig, ax = plt.subplots(1, 2, figsize=(11, 4))
-    ax[0].plot(d["u"] * 1e6, d["stress"] / 1e6, lw=1.2, label="fdem: grip reaction / W")
+    ax[0].plot(d["u"] * 1e6, d["stress"] / 1e6, lw=1.2, label="fdem: grip reaction / W (exact)")
+    ygeo = os.path.join(data, "pull_apart_ygeo.csv")
+    if os.path.exists(ygeo):
+        y = read(ygeo)
+        ax[0].plot(y["u"] * 1e6, y["stress"] / 1e6, lw=1.0, ls="--",
+                   label="softening_length = y-geo (3 G_I/f_t)")
     ax[0].axhline(10, color="k", ls=":", lw=0.8, label="f_t = 10 MPa")
     ax[0].set(xlabel="grip displacement [µm]", ylabel="grip stress [MPa]",
               title="V1 mode-I pull-apart of one jointed line")
