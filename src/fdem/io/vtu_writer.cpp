@@ -21,6 +21,7 @@
 #include "fdem/error.hpp"
 #include "fdem/output.hpp"
 #include "io/atomic_file.hpp"
+#include "io/fracture_output.hpp"
 #include "material/hyperelastic.hpp"
 
 static_assert(std::endian::native == std::endian::little,
@@ -322,6 +323,21 @@ void write_vtu(const std::string& path, const Model& m, const State& s,
                                                      4;
                                 std::memcpy(out + (t - b) * 4, &c, sizeof c);
                             }
+                        },
+                        nullptr});
+    }
+    // fracture (spec fracture.md §8): the fragment of every triangle (State::tri_fragment) and
+    // the largest frozen damage of the joints on its edges; only for models with joints, so
+    // other frames keep their bytes
+    std::vector<Real> damage;
+    if (!m.joints.nodes.empty() && static_cast<int64_t>(s.tri_fragment.size()) == nt) {
+        cell.push_back(id_array("fragment", s.tri_fragment));
+        damage.resize(static_cast<size_t>(nt));
+        triangle_damage(m, s, joint_triangles(m), damage);
+        const Real* d = damage.data();
+        cell.push_back({"damage", VtkType::Float64, 1, nt,
+                        [d](int64_t b, int64_t e, unsigned char* out) {
+                            std::memcpy(out, d + b, static_cast<size_t>(e - b) * sizeof(double));
                         },
                         nullptr});
     }

@@ -19,6 +19,7 @@
 #include "fdem/simulate.hpp"
 #include "integrate/run_checks.hpp"
 #include "io/checkpoint.hpp"
+#include "io/fracture_output.hpp"
 
 namespace fdem {
 
@@ -41,6 +42,8 @@ struct Simulation::Impl {
     std::unique_ptr<Resultants> resultants;  ///< bodies.csv sums (output.bodies)
     std::unique_ptr<BodiesWriter> bodies;
     std::unique_ptr<ProbesWriter> probes;  ///< probes.csv ([[probe]] entries)
+    /// cracks.csv, fragments.csv, joints_NNNNNN.vtu + joints.pvd (models with joints only)
+    std::unique_ptr<FractureOutput> fracture;
     WrittenFile last_frame, last_checkpoint, failure;
     std::string failure_error;
     Real checkpoint_every = 0;
@@ -100,6 +103,16 @@ struct Simulation::Impl {
         series = std::make_unique<PvdSeries>((out / "series.pvd").string());
         for (const auto& [t, file] : prog.frames)
             series->add(t, file);
+        if (!model.joints.nodes.empty()) {
+            fracture = std::make_unique<FractureOutput>(out_dir, model, state, run.fracture,
+                                                        run.output.vtu, restarted, prog.frames);
+            for (const std::string& f : fracture->changed_headers()) {
+                if (on_notice) {
+                    on_notice(fmt::format(
+                        "note: {} had other columns; its earlier rows were dropped", f));
+                }
+            }
+        }
     }
 
     void close_writers() {
@@ -108,6 +121,7 @@ struct Simulation::Impl {
         bodies.reset();
         resultants.reset();
         probes.reset();
+        fracture.reset();
     }
 
     // Continuing into another folder: the frames and history rows written before the checkpoint
@@ -130,12 +144,14 @@ struct Simulation::Impl {
                                 file, t, from.string(), out.string()));
             }
         }
-        if (!fs::exists(out / "history.csv", ec) && fs::exists(from / "history.csv", ec)) {
-            fs::copy_file(from / "history.csv", out / "history.csv", ec);
+        for (const char* csv : {"history.csv", "cracks.csv", "fragments.csv"}) {
+            if (!fs::exists(out / csv, ec) && fs::exists(from / csv, ec)) {
+                fs::copy_file(from / csv, out / csv, ec);
+            }
         }
     }
 
-    void write_output() {
+    void write_output(bool last) {
         const fs::path out = out_dir;
         history->write(model, state);
         if (bodies) {
@@ -150,6 +166,7 @@ struct Simulation::Impl {
             prog.frames.emplace_back(state.time, name);
             last_frame = {(out / name).string(), state.step, state.time};
         }
+        if (fracture) fracture->write_output(model, state, prog.frame, last);
         ++prog.frame;
         const Real interval = run.output.interval > 0 ? run.output.interval : run.end_time / 100.0;
         prog.next_output += interval;
@@ -181,7 +198,10 @@ struct Simulation::Impl {
                         (energy_every > 0 && (s.step + 1) % energy_every == 0) ||
                         (out && t_next >= prog.next_output - 0.5 * s.dt) ||
                         (ck && t_next >= next_checkpoint - 0.5 * s.dt);
+        const int64_t step_before = s.step;
+        const Real time_before = s.time;
         fdem::step(m, s);
+        if (fracture) fracture->after_step(m, s, step_before, time_before);
         if (resultants) resultants->accumulate(m, s, prog.impulses);
         const std::string warning = check_run(m, s, run, prog.energy);
         if (!warning.empty() && warnings++ == 0) {
@@ -194,7 +214,7 @@ struct Simulation::Impl {
         const bool stop = this->stop.load(std::memory_order_relaxed) != 0;
         // NaN/Inf check every 16 steps and before anything is written: files hold good states
         if (s.step % 16 == 0 || output_due || checkpoint_due || stop) check_state(m, s);
-        if (output_due) write_output();
+        if (output_due) write_output(last);
         if (checkpoint_due) {
             write_checkpoint_file(checkpoint_path());
             while (next_checkpoint <= s.time + 0.5 * s.dt)
