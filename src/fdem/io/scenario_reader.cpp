@@ -1402,10 +1402,16 @@ private:
         const LoadedMesh& lm = meshes_[static_cast<size_t>(entry.mesh)];
         const MeshData& mesh = lm.data;
         std::vector<int32_t> mesh_nodes;
+        std::vector<NodeId> surface_copies;  // fracture: the copies of a surface group's triangles
         bool found = false;
         for (const size_t k : lm.named(group)) {
             found = true;
-            const auto n = mesh.group_nodes(mesh.groups[k]);
+            const PhysicalGroup& g = mesh.groups[k];
+            if (g.dim == 2 && has_fracture(m_, entry)) {
+                add_surface_copies(*m_, entry, mesh, g.elements, surface_copies);
+                continue;
+            }
+            const auto n = mesh.group_nodes(g);
             mesh_nodes.insert(mesh_nodes.end(), n.begin(), n.end());
         }
         if (!found) {
@@ -1423,6 +1429,11 @@ private:
             }
         }
         add_node_copies(m_, entry, nodes);
+        if (!surface_copies.empty()) {
+            nodes.insert(nodes.end(), surface_copies.begin(), surface_copies.end());
+            std::sort(nodes.begin(), nodes.end());
+            nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        }
         if (nodes.empty()) {
             f.fail(*f.node("group"), "group",
                    fmt::format("physical group \"{}\" selects none of the nodes of body "
@@ -1430,6 +1441,54 @@ private:
                                group, entry.name, mesh.file));
         }
         return nodes;
+    }
+
+    /// True when a body of the entry has fracture (node copies, Model::node_vertex).
+    static bool has_fracture(const Model* m, const BodyEntry& entry) {
+        if (m == nullptr || m->node_vertex.size() != static_cast<size_t>(m->num_nodes()))
+            return false;
+        for (BodyId b = entry.body_begin; b < entry.body_end; ++b) {
+            if (m->bodies[static_cast<size_t>(b)].fracture) return true;
+        }
+        return false;
+    }
+
+    /// With fracture, the nodes of a surface group are the copies its own triangles use: a
+    /// vertex on the group's border also has copies in triangles outside it (across a jointed
+    /// edge), which a support on the group must leave free. Model triangles are matched to the
+    /// group's mesh triangles (their 4 sub-triangles for a 6-node mesh) by their corner
+    /// positions, which the node copies keep exactly.
+    static void add_surface_copies(const Model& m, const BodyEntry& entry, const MeshData& mesh,
+                                   const std::vector<int32_t>& elements, std::vector<NodeId>& out) {
+        using Key = std::array<Real, 6>;
+        const auto key = [](Vec2 a, Vec2 b, Vec2 c) {
+            std::array<Vec2, 3> v{a, b, c};
+            std::sort(v.begin(), v.end(),
+                      [](Vec2 p, Vec2 q) { return p.x < q.x || (p.x == q.x && p.y < q.y); });
+            return Key{v[0].x, v[0].y, v[1].x, v[1].y, v[2].x, v[2].y};
+        };
+        std::set<Key> keys;
+        const auto x = [&](int32_t i) { return mesh.nodes[static_cast<size_t>(i)]; };
+        for (const int32_t t : elements) {
+            const auto& c = mesh.tris[static_cast<size_t>(t)];
+            if (!mesh.second_order()) {
+                keys.insert(key(x(c[0]), x(c[1]), x(c[2])));
+                continue;
+            }
+            const auto& d = mesh.tri_mid[static_cast<size_t>(t)];
+            keys.insert(key(x(c[0]), x(d[0]), x(d[2])));
+            keys.insert(key(x(d[0]), x(c[1]), x(d[1])));
+            keys.insert(key(x(d[2]), x(d[1]), x(c[2])));
+            keys.insert(key(x(d[0]), x(d[1]), x(d[2])));
+        }
+        for (BodyId b = entry.body_begin; b < entry.body_end; ++b) {
+            const Body& body = m.bodies[static_cast<size_t>(b)];
+            for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
+                const auto& n = m.tri_nodes[static_cast<size_t>(t)];
+                const auto p = [&](int k) { return m.node_x0[static_cast<size_t>(n[k])]; };
+                if (keys.count(key(p(0), p(1), p(2)))) out.insert(out.end(), n.begin(), n.end());
+            }
+        }
     }
 
     /// nodes (one model node per mesh vertex, from the entry's node map), sorted and unique,

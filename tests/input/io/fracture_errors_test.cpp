@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -198,6 +199,36 @@ TEST(FractureInput, SupportsAndLoadsTakeEveryNodeCopy) {
     ASSERT_EQ(sc.run.output.probes.size(), 1u);
     EXPECT_EQ(sc.run.output.probes[0].nodes.size(), at_corner);
     EXPECT_GE(at_corner, 1u);
+}
+
+TEST(FractureInput, SurfaceGroupSupportTakesOnlyItsOwnCopies) {
+    // joints on the line y = 0.5 only: its vertices have a copy below and one above; a support
+    // on the surface group "upper" holds the upper copies and leaves the lower ones free
+    const Scenario sc =
+        load(edit("material = \"rock\"", "material = \"rock\"\nfracture_group = \"joint\"") +
+             "\n[[boundary]]\nbody = \"blocks\"\ngroup = \"upper\"\n"
+             "velocity = [0.0, 1.0e-3]\n");
+    const Model& m = sc.model;
+    ASSERT_GT(m.joints.num_joints(), 0);
+    // expected: the nodes of the triangles above the line (centroid y > 0.5), from the model
+    std::vector<NodeId> upper;
+    for (const auto& n : m.tri_nodes) {
+        const double cy =
+            (m.node_x0[static_cast<size_t>(n[0])].y + m.node_x0[static_cast<size_t>(n[1])].y +
+             m.node_x0[static_cast<size_t>(n[2])].y) /
+            3;
+        if (cy > 0.5) upper.insert(upper.end(), n.begin(), n.end());
+    }
+    std::sort(upper.begin(), upper.end());
+    upper.erase(std::unique(upper.begin(), upper.end()), upper.end());
+    ASSERT_EQ(m.bcs.size(), 2u);
+    EXPECT_EQ(m.bcs[1].nodes, upper);
+    // the joints' lower faces (nodes 3, 2 on triangle B) or upper faces: one face each is held
+    for (const auto& jn : m.joints.nodes) {
+        const bool a = std::binary_search(upper.begin(), upper.end(), jn[0]);
+        const bool b = std::binary_search(upper.begin(), upper.end(), jn[3]);
+        EXPECT_NE(a, b) << "a joint with both faces or none in the support";
+    }
 }
 
 TEST(FractureInput, UnknownKeySuggestsTheClosest) {
