@@ -1,0 +1,122 @@
+#!/usr/bin/python3
+"""Example 08: Brazilian disc. Runs fdem, writes the load-displacement curve and prints the numbers.
+
+Usage (from the repository root, after building):
+    /usr/bin/python3 examples/08_brazilian_disc/run.py            # quick: mesh 2 mm
+    /usr/bin/python3 examples/08_brazilian_disc/run.py --full     # reference: mesh 1 mm
+Options: --out DIR (default out/08_brazilian_disc[_full]), --fdem PATH (default
+build/release/fdem), --threads N (default 1), --check (exit 1 when a spec V4 target is missed),
+--no-run (post-process an existing OUT).
+
+Writes OUT/curve.csv (time, platen closure, load P, nominal stress 2P/(pi D t)), OUT/curve.png
+(load-displacement) and OUT/crack.png (the disc after the split, broken joints in red), and prints
+the peak load, sigma_BTS = 2 P_max/(pi D t) against f_t (spec V4 band [0.9, 1.2]) and where the
+joints broke. Needs python3-vtk9 and python3-matplotlib (Debian packages), hence /usr/bin/python3.
+"""
+import argparse
+import csv
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+import tomllib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))
+import labtest  # noqa: E402  (examples/labtest.py: shared helpers of examples 08 and 09)
+
+D = 0.050  # m: disc diameter (disc.geo)
+THICKNESS = 1.0  # m: 2-D, per unit thickness
+BAND = (0.9, 1.2)  # spec V4: sigma_BTS / f_t (Rocco et al. 1999)
+
+
+def make_scenario(out, full):
+    """The scenario actually run: scenario.toml with absolute mesh paths (and the 1 mm mesh)."""
+    text = open(os.path.join(HERE, "scenario.toml")).read()
+    text = labtest.absolute_meshes(text, HERE)
+    if full:
+        text, n = re.subn(r'(mesh_size = )2\.0e-3(\s+# m: h_max)', r"\g<1>1.0e-3\2", text)
+        assert n == 1, "scenario.toml: the disc's mesh_size line changed, update run.py"
+    path = os.path.join(out, "scenario_used.toml")
+    open(path, "w").write(text)
+    return path
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--full", action="store_true")
+    ap.add_argument("--out")
+    ap.add_argument("--fdem", default="build/release/fdem")
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--check", action="store_true")
+    ap.add_argument("--no-run", action="store_true")
+    a = ap.parse_args()
+    out = a.out or ("out/08_brazilian_disc" + ("_full" if a.full else ""))
+    os.makedirs(out, exist_ok=True)
+    scen = make_scenario(out, a.full)
+    cfg = tomllib.load(open(scen, "rb"))
+    rock = next(m for m in cfg["material"] if m["name"] == "rock")
+    ft = rock["fracture"]["tensile_strength"]
+    E, GI = rock["youngs_modulus"], rock["fracture"]["fracture_energy_I"]
+    lch = E * GI / ft**2  # characteristic length (spec §11)
+
+    wall = None
+    if not a.no_run:
+        t0 = time.time()
+        subprocess.run([a.fdem, "run", scen, "--out", out, "--quiet", "--threads", str(a.threads)],
+                       check=True)
+        wall = time.time() - t0
+
+    # Load from the platens' support reactions (interval averages, docs/output.md bodies.csv):
+    # the force on the top platen from its support is -P (down), on the bottom one +P.
+    rows = labtest.read_csv(os.path.join(out, "bodies.csv"))
+    t, closure, load = labtest.platen_curve(rows, "platen_top/platen_top",
+                                            "platen_bottom/platen_bottom")
+    sig = [2 * p / (math.pi * D * THICKNESS) for p in load]  # ISRM 1978: sigma = 2P/(pi D t)
+    ipk = max(range(len(load)), key=lambda i: load[i])
+    pmax, sbts = load[ipk], sig[ipk]
+    ratio = sbts / ft
+
+    with open(os.path.join(out, "curve.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["time_s", "closure_m", "load_N_per_m", "sigma_nominal_Pa"])
+        for row in zip(t, closure, load, sig):
+            w.writerow([f"{x:.9g}" for x in row])
+
+    hist = labtest.read_csv(os.path.join(out, "history.csv"))
+    q = labtest.quasi_static(hist, t[ipk], labtest.wave_speed(rock))
+
+    # Where the joints broke: from the frames (node copies that separated, labtest.open_edges).
+    frames = labtest.frames(out)
+    disc = next(b for b in cfg["body"] if b["name"] == "disc")
+    o_r = labtest.break_opening(rock, disc["mesh_size"])
+    crack = labtest.crack_report(frames, t[ipk], o_r, D, "disc")
+
+    labtest.plot_curve(
+        os.path.join(out, "curve.png"), [closure], [load], ["fdem"],
+        xlabel="platen closure [mm]", ylabel="load P [kN/m]", xscale=1e3, yscale=1e-3,
+        title=f"Brazilian disc D = {D * 1e3:.0f} mm, b/D = 0.08, D/l_ch = {D / lch:.0f}",
+        hline=(math.pi * D * THICKNESS * ft / 2, "P at $\\sigma_{BTS} = f_t$"))
+    if crack["final_frame"]:
+        labtest.plot_cracks(os.path.join(out, "crack.png"), crack["final_frame"], o_r,
+                            "disc", title="broken joints (red) at the end")
+
+    print(f"Brazilian disc D = {D * 1e3:.0f} mm, f_t = {ft / 1e6:g} MPa, l_ch = {lch * 1e3:.3g} mm, "
+          f"D/l_ch = {D / lch:.3g}" + (f", run {wall:.1f} s" if wall else ""))
+    print(f"  peak load P_max = {pmax / 1e3:.1f} kN/m at closure {closure[ipk] * 1e3:.4f} mm, "
+          f"t = {t[ipk] * 1e3:.3f} ms ({t[ipk] / (D / q['c_p']):.0f} D/c_p)")
+    print(f"  sigma_BTS = 2 P/(pi D t) = {sbts / 1e6:.2f} MPa, sigma_BTS/f_t = {ratio:.3f} "
+          f"(spec V4: [{BAND[0]}, {BAND[1]}])")
+    print(f"  before peak: max KE/E_strain = {q['ke_ratio'] * 100:.3g} % (spec: <= 1 %), "
+          f"energy error {q['energy_error'] * 100:.3g} % of the largest energy")
+    print(f"  cracks: {crack['summary']}")
+    ok = BAND[0] <= ratio <= BAND[1] and crack["along_diameter"] and q["ke_ratio"] <= 0.01
+    print("  V4 " + ("met" if ok else "NOT met"))
+    if a.check and not ok:
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,260 @@
+"""Shared post-processing of the lab-test examples (08 Brazilian disc, 09 UCS).
+
+Reads what every fdem run writes (docs/output.md): bodies.csv (platen reactions and motion),
+history.csv (energies) and the VTU frames (node positions and displacements). Broken joints are
+found geometrically from the frames, so this needs no fracture-specific output: with fracture
+every triangle owns its nodes, the copies of one mesh vertex share the reference position
+X = x - displacement, and a joint is counted as broken when at least 2 of its 3 Simpson points
+(the two ends and the mid-point, theory eqs. 9.2-9.3) have separated by more than the mode-I break
+opening o_r = o_p + G_I/(I_z f_t) (theory eqs. 9.4, 9.12 `exact`; eq. 9.15 with 2 points). That is
+the break rule for pure opening; a joint broken in shear separates by s_r instead, which for the
+rock of these examples is larger, so shear breaks are counted once they have opened by o_r.
+Needs numpy, python3-vtk9 and matplotlib (/usr/bin/python3 on the development machine).
+"""
+import csv
+import math
+import os
+import re
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+I_Z = 0.386307  # theory eq. 9.11 (Evans-Marathe softening)
+
+
+def absolute_meshes(text, folder):
+    """Scenario text with every `mesh = "file"` made absolute (the scenario is written elsewhere)."""
+    return re.sub(r'mesh = "([^"/][^"]*)"',
+                  lambda m: f'mesh = "{os.path.join(folder, m.group(1))}"', text)
+
+
+def read_csv(path):
+    """Rows of an fdem CSV as dicts of floats (an incomplete last line is skipped)."""
+    rows = []
+    with open(path, newline="") as f:
+        r = csv.DictReader(f)
+        for row in r:
+            try:
+                rows.append({k: float(v) for k, v in row.items()})
+            except (TypeError, ValueError):
+                break
+    return rows
+
+
+def platen_curve(rows, top, bottom):
+    """Time, platen closure and load P from bodies.csv.
+
+    P is the mean of the two platens' interval-average support reactions (theory eq. 8.4): the
+    top support pushes its platen down with -P, the bottom one up with +P. The average over an
+    interval belongs with the closure at the interval's middle, so the closure is averaged too.
+    """
+    t, closure, load = [], [], []
+    prev_c = 0.0
+    for r in rows:
+        c = r[bottom + ".uy"] - r[top + ".uy"]
+        t.append(r["time"])
+        closure.append(0.5 * (prev_c + c))
+        load.append(0.5 * (r[bottom + ".reaction_avg_y"] - r[top + ".reaction_avg_y"]))
+        prev_c = c
+    return t, closure, load
+
+
+def wave_speed(mat):
+    """P-wave speed c_p = sqrt((lambda + 2 mu)/rho) (theory eq. 2.5, 5.3), plane strain or stress."""
+    E, nu, rho = mat["youngs_modulus"], mat["poisson_ratio"], mat["density"]
+    if mat.get("plane", "strain") == "strain":
+        m = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
+    else:
+        m = E / (1 - nu * nu)
+    return math.sqrt(m / rho)
+
+
+def quasi_static(hist, t_peak, c_p):
+    """Kinetic/strain ratio before the peak and the energy balance of a platen-driven run.
+
+    The platens move at constant speed from the first step on, so their kinetic energy is the
+    first row's (the specimen has not moved yet); it is subtracted. The ratio is taken over the
+    second half of the loading (t_peak/2 .. t_peak), where the strain energy is not round-off.
+    """
+    ke0 = hist[0]["kinetic"]
+    ratios = [(h["kinetic"] - ke0) / h["strain"] for h in hist
+              if 0.5 * t_peak <= h["time"] <= t_peak and h["strain"] > 0]
+    scale = max(max(abs(h["work_external"]), h["kinetic"] + h["strain"] + h["contact"] +
+                    h.get("energy.joint", 0.0)) for h in hist)
+    err = max(abs(h["energy_error"]) for h in hist)
+    return {"ke_ratio": max(ratios) if ratios else float("nan"), "energy_error": err / scale,
+            "c_p": c_p}
+
+
+def frames(out):
+    """(time, path) of every frame listed in OUT/series.pvd."""
+    pvd = os.path.join(out, "series.pvd")
+    if not os.path.exists(pvd):
+        return []
+    res = []
+    for ds in ET.parse(pvd).getroot().iter("DataSet"):
+        res.append((float(ds.get("timestep")), os.path.join(out, ds.get("file"))))
+    return sorted(res)
+
+
+def break_opening(mat, mesh_size):
+    """Mode-I break opening o_r = 2 h f_t/p + G_I/(I_z f_t) (theory eqs. 9.4, 9.12 `exact`)."""
+    fr = mat["fracture"]
+    ft, GI = fr["tensile_strength"], fr["fracture_energy_I"]
+    p = fr.get("penalty", "auto")
+    p = 10.0 * mat["youngs_modulus"] if p == "auto" else p
+    return 2.0 * mesh_size * ft / p + GI / (I_Z * ft)
+
+
+def read_frame(path):
+    from vtk import vtkXMLUnstructuredGridReader
+    from vtk.util.numpy_support import vtk_to_numpy
+    r = vtkXMLUnstructuredGridReader()
+    r.SetFileName(path)
+    r.Update()
+    g = r.GetOutput()
+    x = vtk_to_numpy(g.GetPoints().GetData())[:, :2].copy()
+    u = vtk_to_numpy(g.GetPointData().GetArray("displacement"))[:, :2].copy()
+    conn = vtk_to_numpy(g.GetCells().GetConnectivityArray()).reshape(-1, 3).copy()
+    body = vtk_to_numpy(g.GetCellData().GetArray("body")).copy()
+    names_arr = g.GetFieldData().GetAbstractArray("body_name")
+    names = [names_arr.GetValue(i) for i in range(names_arr.GetNumberOfValues())]
+    return x, u, conn, body, names
+
+
+class JointEdges:
+    """Internal edges of one body entry, as pairs of node copies, built from a frame."""
+
+    def __init__(self, path, body_name):
+        x, u, conn, body, names = read_frame(path)
+        ids = [i for i, n in enumerate(names) if n == body_name]
+        tris = conn[np.isin(body, ids)]
+        X = x - u
+        self.tris = tris
+        key = np.round(X / 1e-9).astype(np.int64)  # reference position on a 1 nm grid
+        vkey = {}
+        vid = np.empty(len(x), dtype=np.int64)
+        for i, k in enumerate(map(tuple, key)):
+            vid[i] = vkey.setdefault(k, len(vkey))
+        edges = {}
+        for tri in tris:
+            for a, b in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+                ka, kb = vid[a], vid[b]
+                e = (ka, kb) if ka < kb else (kb, ka)
+                # store the copies in the order of the sorted vertex pair
+                edges.setdefault(e, []).append((a, b) if ka < kb else (b, a))
+        pairs = [v for v in edges.values() if len(v) == 2]
+        self.a1 = np.array([p[0][0] for p in pairs])  # vertex 1, copy in triangle 1
+        self.b1 = np.array([p[1][0] for p in pairs])  # vertex 1, copy in triangle 2
+        self.a2 = np.array([p[0][1] for p in pairs])
+        self.b2 = np.array([p[1][1] for p in pairs])
+        self.X = X
+        self.mid = 0.5 * (X[self.a1] + X[self.a2])
+        self.length = np.linalg.norm(X[self.a1] - X[self.a2], axis=1)
+
+    def broken(self, x, o_r):
+        """Mask of joints with >= 2 of 3 Simpson points separated by more than o_r."""
+        da = x[self.a1] - x[self.b1]
+        db = x[self.a2] - x[self.b2]
+        n = (np.linalg.norm(da, axis=1) > o_r).astype(int) + \
+            (np.linalg.norm(db, axis=1) > o_r).astype(int) + \
+            (np.linalg.norm(0.5 * (da + db), axis=1) > o_r).astype(int)
+        return n >= 2
+
+
+def crack_report(frame_list, t_peak, o_r, D, body_name):
+    """Where joints broke: at the first frame at or after the peak, the first frame with a break,
+    and the last frame. Positions are reference positions of the joint mid-points; the loaded
+    diameter is x = 0 (spec V4: at peak within +-D/10 of it, first breaks within the central
+    third |y| <= D/6)."""
+    res = {"along_diameter": False, "final_frame": None, "summary": "no frames"}
+    if not frame_list:
+        return res
+    je = JointEdges(frame_list[0][1], body_name)
+    first = peak = None
+    for t, path in frame_list:
+        x = read_frame(path)[0]
+        m = je.broken(x, o_r)
+        if m.any() and first is None:
+            first = (t, m)
+        if t >= t_peak and peak is None:
+            peak = (t, m)
+        last = (t, m, path)
+    res["final_frame"] = (last[2], je)
+    parts = []
+    ok = True
+    if peak is not None and peak[1].any():
+        m = peak[1]
+        near = np.abs(je.mid[m, 0]) <= D / 10
+        L = je.length[m].sum()
+        parts.append(f"at the first frame after peak (t = {peak[0] * 1e3:.3f} ms) "
+                     f"{m.sum()} broken joints, {L * 1e3:.1f} mm, "
+                     f"{je.length[m][near].sum() / L * 100:.0f} % of the length within |x| <= D/10")
+        ok &= bool(near.all())
+    else:
+        parts.append("no broken joint at the first frame after peak")
+        ok = False
+    if first is not None:
+        m = first[1]
+        central = np.abs(je.mid[m, 1]) <= D / 6
+        parts.append(f"first breaks at t = {first[0] * 1e3:.3f} ms: {m.sum()} joints at "
+                     f"y = {', '.join(f'{y * 1e3:.1f}' for y in je.mid[m, 1][:6])} mm "
+                     f"({central.sum()}/{m.sum()} in the central third |y| <= D/6)")
+        ok &= bool(central.all())
+    m = last[1]
+    if m.any():
+        near = np.abs(je.mid[m, 0]) <= D / 10
+        parts.append(f"at the end {m.sum()} broken joints, {je.length[m].sum() * 1e3:.1f} mm "
+                     f"({je.length[m][near].sum() / je.length[m].sum() * 100:.0f} % within "
+                     f"|x| <= D/10)")
+    res["along_diameter"] = ok
+    res["summary"] = "; ".join(parts)
+    res["broken_at_end"] = int(m.sum())
+    return res
+
+
+def plot_curve(png, xs, ys, labels, xlabel, ylabel, xscale, yscale, title, hline=None):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for x, y, lab in zip(xs, ys, labels):
+        ax.plot(np.array(x) * xscale, np.array(y) * yscale, label=lab)
+    if hline:
+        ax.axhline(hline[0] * yscale, color="0.5", ls="--", lw=1, label=hline[1])
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png, dpi=100)
+    plt.close(fig)
+
+
+def plot_cracks(png, final, o_r, body_name, title, magnify=20.0):
+    """Left: reference mesh with the broken joints in red; right: displacements x magnify."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import LineCollection, PolyCollection
+    path, je = final
+    x = read_frame(path)[0]
+    m = je.broken(x, o_r)
+    X = je.X
+    fig, axs = plt.subplots(1, 2, figsize=(9, 4.6))
+    for ax, pos, sub in ((axs[0], X, "reference mesh"),
+                         (axs[1], X + magnify * (x - X), f"displacement x {magnify:g}")):
+        ax.add_collection(PolyCollection(pos[je.tris], facecolor="0.85", edgecolor="0.6",
+                                         linewidths=0.2))
+        segs = np.stack([X[je.a1[m]], X[je.a2[m]]], axis=1) if ax is axs[0] else \
+            np.stack([pos[je.a1[m]], pos[je.a2[m]]], axis=1)
+        ax.add_collection(LineCollection(segs, colors="r", linewidths=1.5))
+        ax.autoscale()
+        ax.set_aspect("equal")
+        ax.set_title(sub, fontsize=9)
+        ax.set_xlabel("x [m]")
+    fig.suptitle(f"{title}: {m.sum()} broken joints", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(png, dpi=100)
+    plt.close(fig)
