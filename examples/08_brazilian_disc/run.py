@@ -85,6 +85,14 @@ def main():
         for row in zip(t, closure, load, sig):
             w.writerow([f"{x:.9g}" for x in row])
 
+    # Elastic check before any damage: the stress at the centre against the load. Hondros (1959):
+    # for a pressure over an arc 2a, sigma_xx(0) = 2P/(pi D t) (sin 2a - a)/a; sin a = b/D.
+    probes = labtest.read_csv(os.path.join(out, "probes.csv"))
+    alpha = math.asin(0.08)
+    hondros = (math.sin(2 * alpha) - alpha) / alpha
+    half = [i for i in range(len(t)) if 0.4 * pmax <= load[i] <= 0.6 * pmax and i < ipk]
+    centre = [probes[i]["centre.sxx"] / (2 * load[i] / (math.pi * D * THICKNESS)) for i in half]
+
     hist = labtest.read_csv(os.path.join(out, "history.csv"))
     q = labtest.quasi_static(hist, t[ipk], labtest.wave_speed(rock))
 
@@ -109,6 +117,10 @@ def main():
           f"t = {t[ipk] * 1e3:.3f} ms ({t[ipk] / (D / q['c_p']):.0f} D/c_p)")
     print(f"  sigma_BTS = 2 P/(pi D t) = {sbts / 1e6:.2f} MPa, sigma_BTS/f_t = {ratio:.3f} "
           f"(spec V4: [{BAND[0]}, {BAND[1]}])")
+    if centre:
+        print(f"  elastic check (P = 0.4-0.6 P_max): sigma_xx(centre)/(2P/(pi D t)) = "
+              f"{sum(centre) / len(centre):.3f} (mean of {len(centre)} rows; Hondros "
+              f"{hondros:.4f}; one triangle, instant stress against interval-average load)")
     print(f"  before peak: max KE/E_strain = {q['ke_ratio'] * 100:.3g} % (spec: <= 1 %), "
           f"energy error {q['energy_error'] * 100:.3g} % of the largest energy")
     print(f"  cracks: {crack['summary']}")
