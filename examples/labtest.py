@@ -73,16 +73,21 @@ def quasi_static(hist, t_peak, c_p):
     """Kinetic/strain ratio before the peak and the energy balance of a platen-driven run.
 
     The platens move at constant speed from the first step on, so their kinetic energy is the
-    first row's (the specimen has not moved yet); it is subtracted. The ratio is taken over the
-    second half of the loading (t_peak/2 .. t_peak), where the strain energy is not round-off.
+    first row's (the specimen has not moved yet); it is subtracted. The ratio (to the elastic
+    energy of the elements and joints) is taken over the second half of the loading, rows
+    t_peak/2 <= t < t_peak; the peak row's own value is returned too (its interval may already
+    hold the start of the failure).
     """
     ke0 = hist[0]["kinetic"]
-    ratios = [(h["kinetic"] - ke0) / h["strain"] for h in hist
-              if 0.5 * t_peak <= h["time"] <= t_peak and h["strain"] > 0]
+    ratios = [(h["kinetic"] - ke0) / (h["strain"] + h.get("energy.joint", 0.0)) for h in hist
+              if 0.5 * t_peak <= h["time"] < t_peak and h["strain"] > 0]
+    at_peak = [(h["kinetic"] - ke0) / (h["strain"] + h.get("energy.joint", 0.0)) for h in hist
+               if h["time"] == t_peak]
     scale = max(max(abs(h["work_external"]), h["kinetic"] + h["strain"] + h["contact"] +
                     h.get("energy.joint", 0.0)) for h in hist)
     err = max(abs(h["energy_error"]) for h in hist)
     return {"ke_ratio": max(ratios) if ratios else float("nan"), "energy_error": err / scale,
+            "ke_ratio_peak_row": at_peak[0] if at_peak else float("nan"),
             "c_p": c_p}
 
 
@@ -95,6 +100,14 @@ def frames(out):
     for ds in ET.parse(pvd).getroot().iter("DataSet"):
         res.append((float(ds.get("timestep")), os.path.join(out, ds.get("file"))))
     return sorted(res)
+
+
+def elastic_opening_per_length(mat):
+    """o_p / h = 2 f_t / p (theory eq. 9.4)."""
+    fr = mat["fracture"]
+    p = fr.get("penalty", "auto")
+    p = 10.0 * mat["youngs_modulus"] if p == "auto" else p
+    return 2.0 * fr["tensile_strength"] / p
 
 
 def break_opening(mat, mesh_size):
@@ -148,9 +161,30 @@ class JointEdges:
         self.b1 = np.array([p[1][0] for p in pairs])  # vertex 1, copy in triangle 2
         self.a2 = np.array([p[0][1] for p in pairs])
         self.b2 = np.array([p[1][1] for p in pairs])
+        # unit normal of every joint in the reference configuration, pointing from triangle 2's
+        # side into triangle 1 (so n . (x_copy1 - x_copy2) > 0 is opening)
+        tri_of = {}
+        for tri in tris:
+            for a in tri:
+                tri_of[a] = tri
+        e = X[self.a2] - X[self.a1]
+        n = np.stack([-e[:, 1], e[:, 0]], axis=1) / np.linalg.norm(e, axis=1)[:, None]
+        c1 = np.array([X[tri_of[a]].mean(axis=0) for a in self.a1])
+        flip = np.einsum("ij,ij->i", n, c1 - 0.5 * (X[self.a1] + X[self.a2])) < 0
+        n[flip] *= -1
+        self.n = n
         self.X = X
         self.mid = 0.5 * (X[self.a1] + X[self.a2])
         self.length = np.linalg.norm(X[self.a1] - X[self.a2], axis=1)
+
+    def past_elastic_limit(self, x, o_p_per_m):
+        """Mask of joints opened beyond the elastic limit o_p = 2 h f_t/p (theory eq. 9.4) at
+        an end or the mid-point, normal opening in the reference normal (small rotations):
+        the joints in softening or broken (mode I)."""
+        da = np.einsum("ij,ij->i", x[self.a1] - x[self.b1], self.n)
+        db = np.einsum("ij,ij->i", x[self.a2] - x[self.b2], self.n)
+        o_p = o_p_per_m * self.length
+        return (da > o_p) | (db > o_p) | (0.5 * (da + db) > o_p)
 
     def broken(self, x, o_r):
         """Mask of joints with >= 2 of 3 Simpson points separated by more than o_r."""
@@ -162,44 +196,57 @@ class JointEdges:
         return n >= 2
 
 
-def crack_report(frame_list, t_peak, o_r, D, body_name):
-    """Where joints broke: at the first frame at or after the peak, the first frame with a break,
-    and the last frame. Positions are reference positions of the joint mid-points; the loaded
-    diameter is x = 0 (spec V4: at peak within +-D/10 of it, first breaks within the central
-    third |y| <= D/6)."""
+def crack_report(frame_list, t_peak, o_r, o_p_per_m, D, body_name):
+    """Where joints softened and broke, from the frames. Positions are the reference positions
+    of the joint mid-points; the loaded diameter is x = 0. Spec V4: broken joints at peak within
+    +-D/10 of it, first breaks within the central third |y| <= D/6. The frames are the output
+    rows (every `interval`), so "at peak" is the frame of the peak row (joints past the elastic
+    limit: the process zone) and the first frame after it (broken joints)."""
     res = {"along_diameter": False, "final_frame": None, "summary": "no frames"}
     if not frame_list:
         return res
     je = JointEdges(frame_list[0][1], body_name)
-    first = peak = None
-    for t, path in frame_list:
+    ipk = min(range(len(frame_list)), key=lambda i: abs(frame_list[i][0] - t_peak))
+    first = after = None
+    parts = []
+    for i, (t, path) in enumerate(frame_list):
         x = read_frame(path)[0]
         m = je.broken(x, o_r)
+        if i == ipk:
+            soft = je.past_elastic_limit(x, o_p_per_m)
+            if soft.any():
+                y = je.mid[soft, 1]
+                near = np.abs(je.mid[soft, 0]) <= D / 10
+                parts.append(f"at the peak row (t = {t * 1e3:.3f} ms) {soft.sum()} joints past "
+                             f"the elastic limit, {near.sum()} of them within |x| <= D/10, y from "
+                             f"{y.min() * 1e3:.1f} to {y.max() * 1e3:.1f} mm, {m.sum()} broken")
+            else:
+                parts.append(f"at the peak row (t = {t * 1e3:.3f} ms) no joint past the elastic "
+                             f"limit, {m.sum()} broken")
         if m.any() and first is None:
             first = (t, m)
-        if t >= t_peak and peak is None:
-            peak = (t, m)
+        if i > ipk and after is None:
+            after = (t, m)
         last = (t, m, path)
     res["final_frame"] = (last[2], je)
-    parts = []
     ok = True
-    if peak is not None and peak[1].any():
-        m = peak[1]
+    if after is not None and after[1].any():
+        m = after[1]
         near = np.abs(je.mid[m, 0]) <= D / 10
         L = je.length[m].sum()
-        parts.append(f"at the first frame after peak (t = {peak[0] * 1e3:.3f} ms) "
+        parts.append(f"first frame after the peak (t = {after[0] * 1e3:.3f} ms): "
                      f"{m.sum()} broken joints, {L * 1e3:.1f} mm, "
                      f"{je.length[m][near].sum() / L * 100:.0f} % of the length within |x| <= D/10")
         ok &= bool(near.all())
     else:
-        parts.append("no broken joint at the first frame after peak")
+        parts.append("no broken joint in the first frame after the peak")
         ok = False
     if first is not None:
         m = first[1]
         central = np.abs(je.mid[m, 1]) <= D / 6
-        parts.append(f"first breaks at t = {first[0] * 1e3:.3f} ms: {m.sum()} joints at "
-                     f"y = {', '.join(f'{y * 1e3:.1f}' for y in je.mid[m, 1][:6])} mm "
-                     f"({central.sum()}/{m.sum()} in the central third |y| <= D/6)")
+        parts.append(f"first broken joints at t = {first[0] * 1e3:.3f} ms: {m.sum()}, "
+                     f"{central.sum()} in the central third |y| <= D/6, y from "
+                     f"{je.mid[m, 1].min() * 1e3:.1f} to {je.mid[m, 1].max() * 1e3:.1f} mm")
         ok &= bool(central.all())
     m = last[1]
     if m.any():
@@ -208,7 +255,7 @@ def crack_report(frame_list, t_peak, o_r, D, body_name):
                      f"({je.length[m][near].sum() / je.length[m].sum() * 100:.0f} % within "
                      f"|x| <= D/10)")
     res["along_diameter"] = ok
-    res["summary"] = "; ".join(parts)
+    res["summary"] = ";\n    ".join(parts)
     res["broken_at_end"] = int(m.sum())
     return res
 

@@ -100,7 +100,8 @@ def main():
     frames = labtest.frames(out)
     disc = next(b for b in cfg["body"] if b["name"] == "disc")
     o_r = labtest.break_opening(rock, disc["mesh_size"])
-    crack = labtest.crack_report(frames, t[ipk], o_r, D, "disc")
+    crack = labtest.crack_report(frames, t[ipk], o_r, labtest.elastic_opening_per_length(rock), D,
+                                 "disc")
 
     labtest.plot_curve(
         os.path.join(out, "curve.png"), [closure], [load], ["fdem"],
@@ -124,6 +125,11 @@ def main():
     print(f"  before peak: max KE/E_strain = {q['ke_ratio'] * 100:.3g} % (spec: <= 1 %), "
           f"energy error {q['energy_error'] * 100:.3g} % of the largest energy")
     print(f"  cracks: {crack['summary']}")
+    if "joints.broken" in hist[-1]:
+        h = hist[-1]
+        print(f"  history.csv at the end: {h['joints.broken']:.0f} joints broken, crack length "
+              f"{h['crack_length'] * 1e3:.1f} mm, {h['fragments']:.0f} fragments, W_frac "
+              f"{h['energy.fracture']:.3g} J/m")
     ok = BAND[0] <= ratio <= BAND[1] and crack["along_diameter"] and q["ke_ratio"] <= 0.01
     print("  V4 " + ("met" if ok else "NOT met"))
     if a.check and not ok:
