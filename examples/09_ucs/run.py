@@ -148,8 +148,8 @@ def main():
         print(f"  v/{r['k']:g}: peak {r['stress'][i] / 1e6:.2f} MPa at strain "
               f"{r['strain'][i] * 100:.3f} %, t = {r['t'][i] * 1e3:.2f} ms "
               f"({r['t'][i] / (HEIGHT / r['q']['c_p']):.0f} L/c_p), peak/MC = "
-              f"{r['stress'][i] / mc:.3f}; before peak max KE/E_strain = "
-              f"{r['q']['ke_ratio'] * 100:.3g} %, energy error {r['q']['energy_error'] * 100:.3g} %"
+              f"{r['stress'][i] / mc:.3f}; before peak max KE/E_elastic = "
+              f"{r['q']['ke_ratio'] * 100:.3g} % (peak row {r['q']['ke_ratio_peak_row'] * 100:.3g} %), energy error {r['q']['energy_error'] * 100:.3g} %"
               + (f"; run {r['wall']:.1f} s" if r["wall"] else ""))
     ok = True
     if len(runs) >= 2:
