@@ -9,6 +9,8 @@ set(FDEM_EXAMPLES
   "05_composite             2.0e-3"
   "06_pressurised_ring      0.03"
   "07_pull_apart            2.0e-4"
+  "08_brazilian_disc        2.0e-4"
+  "09_ucs                   2.0e-4"
 )
 foreach(entry ${FDEM_EXAMPLES})
   string(REGEX REPLACE " +" ";" parts "${entry}")
