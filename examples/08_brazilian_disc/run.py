@@ -25,8 +25,8 @@ import time
 import tomllib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.dirname(HERE))
-import labtest  # noqa: E402  (examples/labtest.py: shared helpers of examples 08 and 09)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(HERE)), "scripts"))
+import labtest  # noqa: E402  (scripts/labtest.py: shared helpers of examples 08 and 09)
 
 D = 0.050  # m: disc diameter (disc.geo)
 THICKNESS = 1.0  # m: 2-D, per unit thickness

@@ -26,8 +26,8 @@ import time
 import tomllib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.dirname(HERE))
-import labtest  # noqa: E402  (examples/labtest.py: shared helpers of examples 08 and 09)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(HERE)), "scripts"))
+import labtest  # noqa: E402  (scripts/labtest.py: shared helpers of examples 08 and 09)
 
 WIDTH, HEIGHT = 0.050, 0.100  # m: specimen.geo
 RATE_TOL = 0.03  # spec V5: peak change between the two slowest speeds
