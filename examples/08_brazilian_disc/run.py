@@ -107,7 +107,7 @@ def main():
     frames = labtest.frames(out)
     disc = next(b for b in cfg["body"] if b["name"] == "disc")
     o_r = labtest.break_opening(rock, disc["mesh_size"])
-    crack = labtest.crack_report(frames, t[ipk], o_r, labtest.elastic_opening_per_length(rock), D,
+    crack = labtest.crack_report(out, frames, t[ipk], labtest.elastic_opening_per_length(rock), D,
                                  "disc")
 
     labtest.plot_curve(
@@ -115,9 +115,14 @@ def main():
         xlabel="platen closure [mm]", ylabel="load P [kN/m]", xscale=1e3, yscale=1e-3,
         title=f"Brazilian disc D = {D * 1e3:.0f} mm, b/D = 0.08, D/l_ch = {D / lch:.0f}",
         hline=(math.pi * D * THICKNESS * ft / 2, "P at $\\sigma_{BTS} = f_t$"))
-    if crack["final_frame"]:
-        labtest.plot_cracks(os.path.join(out, "crack.png"), crack["final_frame"], o_r,
-                            "disc", title="broken joints (red) at the end")
+    # picture: the first frame after the peak at which the load has fallen below half the peak
+    after = [i for i in range(ipk, len(t)) if load[i] < 0.5 * pmax]
+    if crack["final_frame"] and after:
+        tf = t[after[0]]
+        path = min(frames, key=lambda f: abs(f[0] - tf))
+        labtest.plot_cracks(os.path.join(out, "crack.png"), (path[1], crack["final_frame"][1]),
+                            o_r, "disc", title=f"t = {path[0] * 1e3:.2f} ms (load < P_max/2), "
+                            "broken joints red", magnify=10.0)
 
     print(f"Brazilian disc D = {D * 1e3:.0f} mm, f_t = {ft / 1e6:g} MPa, l_ch = {lch * 1e3:.3g} mm, "
           f"D/l_ch = {D / lch:.3g}" + (f", run {wall:.1f} s" if wall else ""))
