@@ -6,7 +6,9 @@ Usage (from the repository root, after building):
     /usr/bin/python3 examples/09_ucs/run.py --full        # reference: mesh 1.25 mm, v, v/2, v/4
     /usr/bin/python3 examples/09_ucs/run.py --variant b   # spec V5 (b): f_t = c, frictionless platens
 Options: --out DIR (default out/09_ucs[_b][_full]), --fdem PATH (default build/release/fdem),
---threads N (default 1), --rates 1,2 (speed divisors), --check (exit 1 when a target is missed),
+--threads N (default 1), --rates 1,2 (speed divisors K: speed v/K, end time and output interval
+x K), --end-factor F (end time x F as well: the peak comes at ~0.45 of the end time at v and
+earlier at slower speeds), --check (exit 1 when a target is missed),
 --no-run (post-process existing runs).
 
 Stress sigma = P / width (P from the platens' support reactions, bodies.csv), strain =
@@ -40,7 +42,7 @@ def sub1(pattern, repl, text, what):
     return text
 
 
-def make_scenario(out, full, variant, k):
+def make_scenario(out, full, variant, k, end_factor=1.0):
     """scenario.toml with absolute mesh paths, platen speed v/k (end time and interval x k),
     the 1.25 mm mesh (--full) and variant b (f_t = c, frictionless platens)."""
     text = open(os.path.join(HERE, "scenario.toml")).read()
@@ -48,8 +50,8 @@ def make_scenario(out, full, variant, k):
     cfg = tomllib.loads(text)
     for key in ("end_time", "interval"):
         sec = "simulation" if key == "end_time" else "output"
-        v = cfg[sec][key]
-        text = sub1(rf"(?m)^{key} = [0-9.e+-]+", f"{key} = {v * k!r}", text, key)
+        v = cfg[sec][key] * k * (end_factor if key == "end_time" else 1.0)
+        text = sub1(rf"(?m)^{key} = [0-9.e+-]+", f"{key} = {v!r}", text, key)
     text = sub1(r"velocity = \[0\.0, -0\.1\]", f"velocity = [0.0, {-0.1 / k!r}]", text, "top velocity")
     text = sub1(r"velocity = \[0\.0, 0\.1\] ", f"velocity = [0.0, {0.1 / k!r}] ", text,
                 "bottom velocity")
@@ -70,6 +72,7 @@ def main():
     ap.add_argument("--full", action="store_true")
     ap.add_argument("--variant", choices=["a", "b"], default="a")
     ap.add_argument("--rates")
+    ap.add_argument("--end-factor", type=float, default=1.0)
     ap.add_argument("--out")
     ap.add_argument("--fdem", default="build/release/fdem")
     ap.add_argument("--threads", type=int, default=1)
@@ -84,7 +87,7 @@ def main():
     for k in rates:
         d = os.path.join(out, f"v_over_{k:g}")
         os.makedirs(d, exist_ok=True)
-        scen = make_scenario(d, a.full, a.variant, k)
+        scen = make_scenario(d, a.full, a.variant, k, a.end_factor)
         wall = None
         if not a.no_run:
             t0 = time.time()
@@ -135,10 +138,15 @@ def main():
     frames = labtest.frames(slow["dir"])
     spec = next(b for b in slow["cfg"]["body"] if b["name"] == "specimen")
     o_r = labtest.break_opening(rock, spec["mesh_size"])
-    if frames:
+    # picture: the first frame after the peak at which the stress has fallen below half the peak
+    i0 = slow["ipk"]
+    after = [i for i in range(i0, len(slow["t"])) if slow["stress"][i] < 0.5 * slow["stress"][i0]]
+    if frames and after:
         je = labtest.JointEdges(frames[0][1], "specimen")
-        labtest.plot_cracks(os.path.join(out, "crack.png"), (frames[-1][1], je), o_r, "specimen",
-                            title=f"v/{slow['k']:g}, t = {frames[-1][0] * 1e3:.2f} ms")
+        tf, path = min(frames, key=lambda f: abs(f[0] - slow["t"][after[0]]))
+        labtest.plot_cracks(os.path.join(out, "crack.png"), (path, je), o_r, "specimen",
+                            title=f"v/{slow['k']:g}, t = {tf * 1e3:.2f} ms (stress < peak/2)",
+                            magnify=10.0)
 
     print(f"UCS 50 x 100 mm, variant ({a.variant}): f_t = {fr['tensile_strength'] / 1e6:g} MPa, "
           f"c = {c / 1e6:g} MPa, phi = {fr['friction_angle']:g} deg; "
