@@ -92,6 +92,14 @@ void build_topology(const Model& m, ContactTopology& t);
 /// edge targets) run again. Gives bitwise the arrays build_topology(m) gives (tested). Throws
 /// std::invalid_argument for a body id out of range.
 void rebuild_topology(const Model& m, std::span<const BodyId> dirty, ContactTopology& t);
+/// build_topology / rebuild_topology of the welded form (docs/theory.md §6.15): node_sector =
+/// State::node_sector (the sector representative of every node, compute_node_sectors()), used
+/// by the bodies with fracture; empty = identity, which gives the forms above bitwise. Bodies
+/// spliced by the rebuild must have the sectors they had. Throws std::invalid_argument for a
+/// node_sector that is neither empty nor one entry per node.
+void build_topology(const Model& m, std::span<const NodeId> node_sector, ContactTopology& t);
+void rebuild_topology(const Model& m, std::span<const BodyId> dirty,
+                      std::span<const NodeId> node_sector, ContactTopology& t);
 
 /// Effective 2-D Lame constants of a material (docs/theory.md eq. 2.5).
 void compute_lame(Material& mat);

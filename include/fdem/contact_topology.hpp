@@ -60,6 +60,16 @@ struct ContactTopology {
     std::vector<int32_t> body_fallback;     ///< of which in body b
 
     std::vector<uint8_t> body_fixed;  ///< per body (copy of Body::fixed for the role rule)
+    /// per body: 1 = the body contacts itself under rule X (Body::fracture; docs/theory.md
+    /// §6.15): its boundary nodes are also targets of its own sub-triangles
+    std::vector<uint8_t> body_self;
+
+    /// Welded form (bodies with fracture, docs/theory.md §6.15): per real node the
+    /// representative of its sector (State::node_sector: the smallest copy id of the copies of
+    /// one mesh vertex still joined around it by unbroken joints). Empty = identity (no body has
+    /// fracture). Boundary classification, chords and nodal distances of a fracture body are
+    /// computed on these ids; boundary edges and sub-triangles keep each triangle's own copies.
+    std::vector<NodeId> node_weld;
 
     /// Boundary nodes (targets) of all bodies, ascending ids; those of body b are
     /// [body_bnode_begin[b], body_bnode_begin[b+1]).
@@ -100,6 +110,10 @@ struct ContactTopology {
     /// parallel to sub_tri (build_legacy_boundary_field(), docs/theory.md §7.4); empty otherwise.
     std::vector<LegacyBoundaryTri> sub_legacy_b;
 
+    /// Sector of real node i (i itself without a weld).
+    NodeId weld(NodeId i) const {
+        return node_weld.empty() ? i : node_weld[static_cast<size_t>(i)];
+    }
     int32_t num_virtual() const { return static_cast<int32_t>(virt_parent.size()); }
     int32_t num_contact_nodes() const { return num_real_nodes + num_virtual(); }
     int32_t num_sub_tris() const { return static_cast<int32_t>(sub_tri.size()); }
@@ -130,7 +144,8 @@ inline Real target_scale(const ContactTopology& ct, NodeId t) {
 }
 
 /// Does body c act as contactor for the boundary nodes of body t? (role rule of
-/// ContactModel::two_way). Never true for c == t.
+/// ContactModel::two_way). Never true for c == t: a body's self-contact (body_self) is decided
+/// per pair by rule_x_allows().
 inline bool is_contactor_for(const ContactModel& cm, const ContactTopology& ct, BodyId c,
                              BodyId t) {
     if (c == t) return false;
@@ -140,6 +155,24 @@ inline bool is_contactor_for(const ContactModel& cm, const ContactTopology& ct, 
     if (cm.two_way) return true;
     if (fc != ft) return fc;
     return c < t;
+}
+
+/// Rule X (docs/theory.md §6.15, spec fracture.md §4.3): may target t act against contactor
+/// sub-triangle s of its own body (body_self)? Yes iff no node of s's parent mesh triangle
+/// (sub_parent) is in the sector of the target's node (of either end node for an edge target):
+/// a node can only reach the triangles around its own vertex through intact-joint compliance,
+/// and across a crack the other face's triangles hold other sectors. tri_nodes = Model::tri_nodes.
+inline bool rule_x_allows(const ContactTopology& ct, const std::array<NodeId, 3>* tri_nodes,
+                          NodeId t, int32_t s) {
+    const auto& n = tri_nodes[ct.sub_parent[static_cast<size_t>(s)]];
+    const NodeId w0 = ct.weld(n[0]), w1 = ct.weld(n[1]), w2 = ct.weld(n[2]);
+    auto touches = [&](NodeId i) {
+        const NodeId w = ct.weld(i);
+        return w == w0 || w == w1 || w == w2;
+    };
+    if (t < ct.num_real_nodes) return !touches(t);
+    const auto& e = ct.boundary_edges[static_cast<size_t>(t - ct.edge_target_base)];
+    return !touches(e[0]) && !touches(e[1]);
 }
 
 }  // namespace fdem

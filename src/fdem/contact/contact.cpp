@@ -95,7 +95,7 @@ inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f
 
 void init_contact_state(const Model& m, State& s) {
     const ContactModel& cm = m.contact;
-    build_topology(m, s.topology);
+    build_topology(m, s.node_sector, s.topology);
     const ContactTopology& ct = s.topology;
     ContactState& cs = s.contact;
     cs = ContactState{};
@@ -553,7 +553,9 @@ void add_contact_forces(const Model& m, State& s) {
             pair_parameters(cm, m.bodies[a.body].material, m.bodies[bt].material);
         const Real scale = target_scale(ct, a.node);
         bool lost = false;
-        if (a.h.depth_ratio > kLostCheckRatio &&
+        // (not for a self-contact pair: the node lies on its own body's boundary, where the
+        // crossing test has no meaning)
+        if (a.h.depth_ratio > kLostCheckRatio && a.body != bt &&
             inside_body(ct, a.body, x, target_point(ct, x, a.node))) {
             lost = true;  // left the boundary layer inwards: penetration too deep (spec §4.6)
             ++cs.lost_inside;

@@ -151,10 +151,20 @@ private:
         cm_.sub_parent.push_back(t);
     }
     bool is_boundary_node(NodeId i) const { return cm_.node_on_boundary[i] != 0; }
-    // virtual mid-node of chord p-q, created on first use (composite bodies) or up front (CST)
+    // sector of real node i in the body being built (i itself unless the body is welded)
+    NodeId W(NodeId i) const { return weld_ != nullptr ? weld_[i] : i; }
+    // the id a nodal distance is computed on: the sector of a real node, a virtual node itself
+    NodeId R(NodeId i) const { return i < cm_.num_real_nodes ? W(i) : i; }
+    // welded key of the edge between real nodes p and q
+    Key wkey(NodeId p, NodeId q) const { return key(W(p), W(q)); }
+    // virtual mid-node of chord p-q (p, q: the calling triangle's own copies), created on first
+    // use (composite bodies) or up front (CST); in a welded body the second triangle of a chord
+    // has its own mid-node when its copies differ (a chord across an intact joint)
     NodeId chord_mid(NodeId p, NodeId q) {
-        const auto it = std::lower_bound(ckeys_.begin(), ckeys_.end(), key(p, q));
-        NodeId& v = cvirt_[static_cast<size_t>(it - ckeys_.begin())];
+        const auto it = std::lower_bound(ckeys_.begin(), ckeys_.end(), wkey(p, q));
+        const size_t c = static_cast<size_t>(it - ckeys_.begin());
+        if (cvirt2_[c] != kNone && key(p, q) != ccopy_[c]) return cvirt2_[c];
+        NodeId& v = cvirt_[c];
         if (v == kNone) v = add_virtual({p, q, p}, {0.5, 0.5, 0.0});
         return v;
     }
@@ -167,23 +177,34 @@ private:
     std::vector<EdgeRec> edges_;
     std::vector<Key> bkeys_, ckeys_;
     std::vector<NodeId> cvirt_;  // virtual node of chord ckeys_[i]
+    // welded bodies: the first triangle's copies of chord i (min, max) and the second
+    // triangle's mid-node when its copies differ (else kNone)
+    std::vector<Key> ccopy_;
+    std::vector<NodeId> cvirt2_;
+    std::vector<size_t> interior_;  // first record (in edges_) of each interior edge
+    std::vector<uint8_t> in_sub_;   // welded bodies: real node is a vertex of a sub-triangle
+    const NodeId* weld_ = nullptr;  // sectors of the body being built (null: not welded)
 };
 
 void TopologyBuilder::body(BodyId b) {
     const Body& body = m_.bodies[b];
+    // a body with fracture is built on its welded mesh (docs/theory.md §6.15): node copies of
+    // one sector are one vertex for the edge classification, the chords and the distances
+    weld_ = body.fracture && !cm_.node_weld.empty() ? cm_.node_weld.data() : nullptr;
 
-    // 1. edges of the body, grouped by node pair: used once = boundary, twice = interior
+    // 1. edges of the body, grouped by (welded) node pair: used once = boundary (an external
+    //    edge or a face of a broken joint), twice = interior
     edges_.clear();
     for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
         const auto& n = m_.tri_nodes[t];
         for (int8_t k = 0; k < 3; ++k) {
-            const Key e = key(n[k], n[(k + 1) % 3]);
+            const Key e = wkey(n[k], n[(k + 1) % 3]);
             edges_.push_back({e[0], e[1], t, k});
         }
     }
     std::sort(edges_.begin(), edges_.end(), edge_less);
     bkeys_.clear();
-    std::vector<Key> interior;
+    interior_.clear();
     for (size_t i = 0; i < edges_.size();) {
         size_t j = i;
         while (j < edges_.size() && edges_[j].a == edges_[i].a && edges_[j].b == edges_[i].b)
@@ -195,7 +216,7 @@ void TopologyBuilder::body(BodyId b) {
             cm_.node_on_boundary[edges_[i].a] = 1;
             cm_.node_on_boundary[edges_[i].b] = 1;
         } else if (j - i == 2) {
-            interior.push_back({edges_[i].a, edges_[i].b});
+            interior_.push_back(i);
         } else {
             throw InputError(SourceLocation{}, "mesh",
                              fmt::format("body {} (\"{}\"): edge between nodes {} and {} is shared "
@@ -205,6 +226,12 @@ void TopologyBuilder::body(BodyId b) {
         i = j;
     }
     cm_.body_bedge_begin.push_back(static_cast<int32_t>(cm_.boundary_edges.size()));
+    if (weld_ != nullptr) {
+        // every copy of a boundary sector is a boundary node (a target with its own mass);
+        // the representative (smallest copy) was marked above and comes first
+        for (NodeId i = body.node_begin; i < body.node_end; ++i)
+            cm_.node_on_boundary[i] = cm_.node_on_boundary[weld_[i]];
+    }
     for (NodeId i = body.node_begin; i < body.node_end; ++i) {
         if (cm_.node_on_boundary[i]) cm_.boundary_nodes.push_back(i);
     }
@@ -217,12 +244,25 @@ void TopologyBuilder::body(BodyId b) {
     const bool composite_body = body.element == ElementKind::Composite6;
     ckeys_.clear();
     cvirt_.clear();
-    for (const Key& e : interior) {
+    ccopy_.clear();
+    cvirt2_.clear();
+    for (const size_t i : interior_) {
+        const Key e = {edges_[i].a, edges_[i].b};
         if (cm_.node_on_boundary[e[0]] && cm_.node_on_boundary[e[1]]) {
+            // the two triangles' own copies of the edge (the same nodes unless welded)
+            auto copies = [&](const EdgeRec& r) {
+                const auto& n = m_.tri_nodes[r.tri];
+                return key(n[r.local], n[(r.local + 1) % 3]);
+            };
+            const Key c1 = copies(edges_[i]), c2 = copies(edges_[i + 1]);
             cm_.chords.push_back(e);
             ckeys_.push_back(e);
+            ccopy_.push_back(c1);
             cvirt_.push_back(composite_body ? kNone
-                                            : add_virtual({e[0], e[1], e[0]}, {0.5, 0.5, 0.0}));
+                                            : add_virtual({c1[0], c1[1], c1[0]}, {0.5, 0.5, 0.0}));
+            cvirt2_.push_back(composite_body || c2 == c1
+                                  ? kNone
+                                  : add_virtual({c2[0], c2[1], c2[0]}, {0.5, 0.5, 0.0}));
         }
     }
 
@@ -255,7 +295,7 @@ void TopologyBuilder::split_mesh_triangle(BodyId b, TriId t) {
     int nb = 0, nc = 0;
     bool is_chord[3];
     for (int k = 0; k < 3; ++k) {
-        const NodeId p = n[k], q = n[(k + 1) % 3];
+        const NodeId p = W(n[k]), q = W(n[(k + 1) % 3]);
         nb += has_key(bkeys_, p, q) ? 1 : 0;
         is_chord[k] = has_key(ckeys_, p, q);
         nc += is_chord[k] ? 1 : 0;
@@ -408,10 +448,12 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
     constexpr Real kUnset = std::numeric_limits<Real>::infinity();
     cm_.node_dist.resize(static_cast<size_t>(cm_.num_contact_nodes()), 0.0);
     cm_.node_dist_edge.resize(static_cast<size_t>(cm_.num_contact_nodes()), -1);
+    // (on sector ids R(i) in a welded body: a sector's distance is the minimum over the
+    // sub-triangles opposite any of its copies, given to its copies at the end)
     for (size_t s = sub_begin; s < cm_.sub_tri.size(); ++s) {
         for (NodeId i : cm_.sub_tri[s]) {
             const bool bnode = i < cm_.num_real_nodes && cm_.node_on_boundary[i];
-            if (!bnode) cm_.node_dist[i] = kUnset;
+            if (!bnode) cm_.node_dist[R(i)] = kUnset;
         }
     }
     const int32_t e_first = cm_.body_bedge_begin[b];  // bkeys_[k] is boundary edge e_first + k
@@ -421,13 +463,14 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
         for (int k = 0; k < 3; ++k) {
             const NodeId p = q[k], r = q[(k + 1) % 3], o = q[(k + 2) % 3];
             if (p >= cm_.num_real_nodes || r >= cm_.num_real_nodes) continue;
-            if (!has_key(bkeys_, p, r)) continue;
+            if (!has_key(bkeys_, W(p), W(r))) continue;
             if (o < cm_.num_real_nodes && cm_.node_on_boundary[o]) continue;
             const Real h = a2 / norm(x0(r) - x0(p));
-            if (h < cm_.node_dist[o]) {
-                cm_.node_dist[o] = h;
-                const auto it = std::lower_bound(bkeys_.begin(), bkeys_.end(), key(p, r));
-                cm_.node_dist_edge[o] = e_first + static_cast<int32_t>(it - bkeys_.begin());
+            const NodeId ro = R(o);
+            if (h < cm_.node_dist[ro]) {
+                cm_.node_dist[ro] = h;
+                const auto it = std::lower_bound(bkeys_.begin(), bkeys_.end(), wkey(p, r));
+                cm_.node_dist_edge[ro] = e_first + static_cast<int32_t>(it - bkeys_.begin());
             }
         }
     }
@@ -436,7 +479,8 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
     const size_t e0 = static_cast<size_t>(cm_.body_bedge_begin[b]);
     const size_t e1 = static_cast<size_t>(cm_.body_bedge_begin[b + 1]);
     for (size_t s = sub_begin; s < cm_.sub_tri.size(); ++s) {
-        for (NodeId i : cm_.sub_tri[s]) {
+        for (const NodeId c : cm_.sub_tri[s]) {
+            const NodeId i = R(c);  // copies of a sector coincide in the reference
             if (cm_.node_dist[i] != kUnset) continue;
             Real dmin = kUnset;
             const Vec2 xi = x0(i);
@@ -453,6 +497,31 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
             ++cm_.body_fallback.back();
         }
     }
+
+    // 6. welded body: the sector's distance to every copy that is a sub-triangle vertex; a
+    //    representative that is in no sub-triangle keeps 0 (never read by the field)
+    if (weld_ != nullptr) {
+        const Body& body = m_.bodies[b];
+        in_sub_.resize(static_cast<size_t>(cm_.num_real_nodes), 0);
+        for (size_t s = sub_begin; s < cm_.sub_tri.size(); ++s) {
+            for (const NodeId i : cm_.sub_tri[s]) {
+                if (i < cm_.num_real_nodes) in_sub_[i] = 1;
+            }
+        }
+        for (NodeId i = body.node_begin; i < body.node_end; ++i) {
+            if (weld_[i] != i && in_sub_[i]) {
+                cm_.node_dist[i] = cm_.node_dist[weld_[i]];
+                cm_.node_dist_edge[i] = cm_.node_dist_edge[weld_[i]];
+            }
+        }
+        for (NodeId i = body.node_begin; i < body.node_end; ++i) {
+            if (weld_[i] == i && !in_sub_[i]) {
+                cm_.node_dist[i] = 0;
+                cm_.node_dist_edge[i] = -1;
+            }
+            in_sub_[i] = 0;
+        }
+    }
 }
 
 // Edge targets (docs/theory.md §6.12): the midpoint of every boundary edge becomes a target.
@@ -463,20 +532,35 @@ void TopologyBuilder::nodal_distances(BodyId b, size_t sub_begin) {
 // of a body is unchanged. With length scaling this is Simpson's rule on every edge exactly.
 // target_dt_factor: the target stiffness is no longer diagonal (a midpoint moves with both end
 // nodes); its largest row sum per node mass bounds the target-side term of eq. 6.15 (Gershgorin).
+//
+// Welded form (docs/theory.md §6.15): the sharing is per sector, not per copy: the sector's scale
+// (the sum over its copies) is shared over the boundary edges of all its copies (L_j = their
+// lengths), since a copy whose triangle touches the boundary only at the vertex has no edge of
+// its own; so the sector's total scale is kept, as eq. 19 requires. Without a weld w(i) = i and
+// the sums are the per-node values themselves.
 void add_edge_targets(const Model& m, ContactTopology& cm) {
     const size_t ne = cm.boundary_edges.size();
     std::vector<Real> len(ne), tributary(static_cast<size_t>(m.num_nodes()), 0.0);
     for (size_t e = 0; e < ne; ++e) {
         const auto& be = cm.boundary_edges[e];
         len[e] = norm(m.node_x0[be[1]] - m.node_x0[be[0]]);
-        tributary[be[0]] += len[e];
-        tributary[be[1]] += len[e];
+        tributary[cm.weld(be[0])] += len[e];
+        tributary[cm.weld(be[1])] += len[e];
+    }
+    const std::vector<Real>* sector_scale = &cm.node_scale;
+    std::vector<Real> welded;
+    if (!cm.node_weld.empty()) {
+        welded.assign(static_cast<size_t>(m.num_nodes()), 0.0);
+        for (NodeId i : cm.boundary_nodes)
+            welded[cm.weld(i)] += cm.node_scale[i];
+        sector_scale = &welded;
     }
     cm.edge_scale.assign(ne, 0.0);
     for (size_t e = 0; e < ne; ++e) {
         Real w = 0;
-        for (NodeId i : cm.boundary_edges[e]) {
-            if (tributary[i] > 0) w += cm.node_scale[i] * (len[e] / tributary[i]);
+        for (NodeId c : cm.boundary_edges[e]) {
+            const NodeId i = cm.weld(c);
+            if (tributary[i] > 0) w += (*sector_scale)[i] * (len[e] / tributary[i]);
         }
         cm.edge_scale[e] = (2.0 / 3.0) * w;
     }
@@ -548,15 +632,23 @@ void splice_body(const Model& m, const ContactTopology& o, BodyId b, ContactTopo
 // others spliced from old; then the passes over all bodies (contact node lists, target scales,
 // edge targets, baseline B field).
 void assemble(const Model& m, const ContactTopology* old, const std::vector<uint8_t>* dirty,
-              ContactTopology& cm) {
+              std::span<const NodeId> node_sector, ContactTopology& cm) {
     cm = ContactTopology{};
     cm.num_real_nodes = m.num_nodes();
     cm.edge_target_base = cm.num_real_nodes;
     if (m.contact.algorithm == ContactAlgorithm::None) return;
 
     cm.body_fixed.resize(static_cast<size_t>(m.num_bodies()));
-    for (BodyId b = 0; b < m.num_bodies(); ++b)
+    cm.body_self.resize(static_cast<size_t>(m.num_bodies()));
+    bool any_fracture = false;
+    for (BodyId b = 0; b < m.num_bodies(); ++b) {
         cm.body_fixed[b] = m.bodies[b].fixed ? 1 : 0;
+        cm.body_self[b] = m.bodies[b].fracture ? 1 : 0;
+        any_fracture = any_fracture || m.bodies[b].fracture;
+    }
+    // the weld only where it can differ from the identity: bodies with fracture
+    if (any_fracture && !node_sector.empty())
+        cm.node_weld.assign(node_sector.begin(), node_sector.end());
     cm.node_on_boundary.assign(static_cast<size_t>(m.num_nodes()), 0);
     cm.node_dist.assign(static_cast<size_t>(m.num_nodes()), 0.0);
     cm.node_dist_edge.assign(static_cast<size_t>(m.num_nodes()), -1);
@@ -687,8 +779,25 @@ void resolve_contact_params(Model& m) {
     }
 }
 
+namespace {
+
+void check_sectors(const Model& m, std::span<const NodeId> node_sector, const char* who) {
+    if (!node_sector.empty() && node_sector.size() != static_cast<size_t>(m.num_nodes())) {
+        throw std::invalid_argument(
+            fmt::format("{}: node_sector has {} entries, the model {} nodes", who,
+                        node_sector.size(), m.num_nodes()));
+    }
+}
+
+}  // namespace
+
 void build_topology(const Model& m, ContactTopology& t) {
-    assemble(m, nullptr, nullptr, t);
+    build_topology(m, {}, t);
+}
+
+void build_topology(const Model& m, std::span<const NodeId> node_sector, ContactTopology& t) {
+    check_sectors(m, node_sector, "build_topology");
+    assemble(m, nullptr, nullptr, node_sector, t);
     if constexpr (kAssertsEnabled) {
         const std::vector<std::string> bad = validate_topology(m, t, 1);
         FDEM_ASSERT(bad.empty(), bad.front().c_str());
@@ -702,8 +811,14 @@ ContactTopology build_topology(const Model& m) {
 }
 
 void rebuild_topology(const Model& m, std::span<const BodyId> dirty, ContactTopology& t) {
+    rebuild_topology(m, dirty, {}, t);
+}
+
+void rebuild_topology(const Model& m, std::span<const BodyId> dirty,
+                      std::span<const NodeId> node_sector, ContactTopology& t) {
+    check_sectors(m, node_sector, "rebuild_topology");
     if (m.contact.algorithm == ContactAlgorithm::None) {
-        assemble(m, nullptr, nullptr, t);
+        assemble(m, nullptr, nullptr, node_sector, t);
         return;
     }
     FDEM_ASSERT(t.body_virt_begin.size() == static_cast<size_t>(m.num_bodies()) + 1,
@@ -717,7 +832,7 @@ void rebuild_topology(const Model& m, std::span<const BodyId> dirty, ContactTopo
         flag[static_cast<size_t>(b)] = 1;
     }
     ContactTopology next;
-    assemble(m, &t, &flag, next);
+    assemble(m, &t, &flag, node_sector, next);
     t = std::move(next);
     if constexpr (kAssertsEnabled) {
         const std::vector<std::string> bad = validate_topology(m, t, 1);

@@ -49,6 +49,10 @@ private:
     size_t nb() const { return static_cast<size_t>(m_.num_bodies()); }
     bool is_real(NodeId i) const { return i >= 0 && i < t_.num_real_nodes; }
     bool is_contact(NodeId i) const { return i >= 0 && i < t_.num_contact_nodes(); }
+    // sector of real node i: the weld in a body with fracture (welded form), else i
+    NodeId W(NodeId i) const {
+        return t_.node_weld.empty() || !m_.bodies[m_.node_body[i]].fracture ? i : t_.node_weld[i];
+    }
     bool in_body(NodeId i, BodyId b) const {
         return i >= m_.bodies[b].node_begin && i < m_.bodies[b].node_end;
     }
@@ -103,6 +107,8 @@ private:
         eq("body_chord_begin", t_.body_chord_begin.size(), nb() + 1);
         eq("body_btri_begin", t_.body_btri_begin.size(), nb() + 1);
         eq("body_fallback", t_.body_fallback.size(), nb());
+        eq("body_self", t_.body_self.size(), nb());
+        if (!t_.node_weld.empty()) eq("node_weld", t_.node_weld.size(), nn);
         const bool edge_targets =
             m_.contact.edge_targets && m_.contact.algorithm == ContactAlgorithm::Smooth;
         eq("edge_scale", t_.edge_scale.size(), edge_targets ? t_.boundary_edges.size() : 0);
@@ -139,6 +145,20 @@ private:
             if ((t_.body_fixed[b] != 0) != m_.bodies[b].fixed)
                 fail("body_fixed: body {} has {}, Body::fixed is {}", b, t_.body_fixed[b],
                      m_.bodies[b].fixed);
+        }
+        for (BodyId b = 0; b < m_.num_bodies(); ++b) {
+            if ((t_.body_self[b] != 0) != m_.bodies[b].fracture)
+                fail("body_self: body {} has {}, Body::fracture is {}", b, t_.body_self[b],
+                     m_.bodies[b].fracture);
+        }
+        // a weld maps every node to the smallest node of its sector, in its body, at the same
+        // reference position (copies of one mesh vertex)
+        for (size_t i = 0; i < t_.node_weld.size(); ++i) {
+            const NodeId w = t_.node_weld[i];
+            const NodeId n = static_cast<NodeId>(i);
+            if (w < 0 || w > n || t_.node_weld[static_cast<size_t>(w)] != w ||
+                m_.node_body[w] != m_.node_body[n] || !(m_.node_x0[w] == m_.node_x0[n]))
+                fail("node_weld: node {} has sector {}", n, w);
         }
         for (size_t v = 0; v < t_.virt_parent.size(); ++v) {
             for (NodeId p : t_.virt_parent[v]) {
@@ -180,14 +200,15 @@ private:
         return out_.size() == before;
     }
 
-    // Directed edges of body b's triangles: key -> (uses, directed a->b as in the triangle)
+    // Directed edges of body b's triangles: (welded) key -> (uses, the triangle's own nodes
+    // a->b as in the triangle)
     void body_edges(BodyId b) {
         const Body& body = m_.bodies[b];
         std::map<Key, std::pair<int, Key>> uses;
         for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
             const auto& n = m_.tri_nodes[t];
             for (int k = 0; k < 3; ++k) {
-                auto& u = uses[key(n[k], n[(k + 1) % 3])];
+                auto& u = uses[key(W(n[k]), W(n[(k + 1) % 3]))];
                 ++u.first;
                 u.second = {n[k], n[(k + 1) % 3]};
             }
@@ -208,11 +229,11 @@ private:
                 fail("boundary_edges: edge {} ({}, {}) is not in body {}", e, be[0], be[1], b);
                 continue;
             }
-            if (e > e0 && !(key(t_.boundary_edges[e - 1][0], t_.boundary_edges[e - 1][1]) <
-                            key(be[0], be[1])))
+            const auto& bp = t_.boundary_edges[e - (e > e0 ? 1 : 0)];
+            if (e > e0 && !(key(W(bp[0]), W(bp[1])) < key(W(be[0]), W(be[1]))))
                 fail("boundary_edges: edge {} ({}, {}) is not after edge {} in (min, max) order", e,
                      be[0], be[1], e - 1);
-            const auto it = uses.find(key(be[0], be[1]));
+            const auto it = uses.find(key(W(be[0]), W(be[1])));
             if (it == uses.end() || it->second.first != 1) {
                 fail("boundary_edges: edge {} ({}, {}) is used by {} triangles of body {}, not 1",
                      e, be[0], be[1], it == uses.end() ? 0 : it->second.first, b);
@@ -224,11 +245,14 @@ private:
     }
 
     void boundary_nodes() {
+        // welded form: every copy of a sector that ends a boundary edge
         std::vector<uint8_t> end_node(static_cast<size_t>(m_.num_nodes()), 0);
         for (const auto& e : t_.boundary_edges) {
-            end_node[e[0]] = 1;
-            end_node[e[1]] = 1;
+            end_node[W(e[0])] = 1;
+            end_node[W(e[1])] = 1;
         }
+        for (NodeId i = 0; i < m_.num_nodes(); ++i)
+            end_node[i] = end_node[W(i)];
         for (NodeId i = 0; i < m_.num_nodes(); ++i) {
             if ((t_.node_on_boundary[i] != 0) != (end_node[i] != 0))
                 fail("node_on_boundary: node {} has {}, but it is {}an end of a boundary edge", i,
@@ -465,9 +489,18 @@ private:
     }
 
     void scales() {
+        // length scaling: a copy's share of its sector's boundary length, 0 for a copy that
+        // ends no boundary edge of its own (welded form); > 0 on every other boundary node
+        std::vector<uint8_t> own_end(static_cast<size_t>(m_.num_nodes()), 0);
+        for (const auto& e : t_.boundary_edges) {
+            own_end[e[0]] = 1;
+            own_end[e[1]] = 1;
+        }
+        const bool length = m_.contact.scaling == ContactScaling::Length;
         for (NodeId i = 0; i < m_.num_nodes(); ++i) {
             const Real s = t_.node_scale[i];
-            if (!std::isfinite(s) || s < 0 || (t_.node_on_boundary[i] && !(s > 0)))
+            const bool need = t_.node_on_boundary[i] && (!length || own_end[i]);
+            if (!std::isfinite(s) || s < 0 || (need && !(s > 0)))
                 fail("node_scale: node {} has {}", i, s);
         }
         for (size_t e = 0; e < t_.edge_scale.size(); ++e) {

@@ -42,8 +42,14 @@ namespace fdem {
 ///    other vertices of sub-triangles > 0, finite, the recorded edge is a boundary edge of the
 ///    node's body, and the distance is the node's distance to that edge's line (eq. 6.3) or
 ///    segment (fallback, eq. 6.4)
-///  * scales: node_scale finite, >= 0, > 0 on boundary nodes; edge_scale (edge targets) finite
-///    and > 0; body_fixed = Body::fixed; sub_legacy_b parallel to sub_tri for baseline B only
+///  * scales: node_scale finite, >= 0, > 0 on boundary nodes (with length scaling: on those that
+///    end a boundary edge); edge_scale (edge targets) finite and > 0; body_fixed = Body::fixed;
+///    body_self = Body::fracture; sub_legacy_b parallel to sub_tri for baseline B only
+///  * welded form (node_weld not empty, docs/theory.md §6.15): node_weld maps every node to the
+///    smallest node of its sector, in its body, at the same reference position; in bodies with
+///    fracture the edge keys, the boundary / chord classification and the boundary nodes above
+///    are those of the welded ids (every copy of a boundary sector is a boundary node), while
+///    boundary edges hold (and are oriented as in) their triangle's own copies
 std::vector<std::string> validate_topology(const Model& m, const ContactTopology& t,
                                            size_t max_messages = 20);
 

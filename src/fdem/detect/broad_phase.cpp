@@ -59,7 +59,9 @@ void clear_candidates(Candidates& out) {
 // adjacent cells) scanned without indirection (detect/broad_scan.hpp; 8 entries per instruction
 // and a sorting network with AVX-512). The scan appends branch-free and applies the whole role
 // rule is_contactor_for there (a comparison of keys, detail::RoleTest), so the node's own body
-// never reaches the hit list; the hits are put in ascending id order (= body order) and emitted
+// never reaches the hit list, unless the body contacts itself (fracture: its own sub-triangles
+// pass the key test and filter_rule_x() applies rule X, a per-node branch that bodies without
+// fracture never take); the hits are put in ascending id order (= body order) and emitted
 // branch-free. Output order = (node ascending, tri ascending) as before, independent of the grid.
 void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, const Vec2* xv,
                      Candidates& out, BroadPhaseScratch& g, BroadKernel kernel) {
@@ -127,8 +129,9 @@ void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, c
     auto query = [&](NodeId j) {
         detail::Block blk;
         if (!detail::node_block(m, ct, ng, j, target_point(ct, x, j), blk)) return;
-        const int32_t nh =
+        int32_t nh =
             simd ? detail::scan_block_avx512(a, blk, hits) : detail::scan_block(a, blk, hits);
+        if (blk.self) nh = detail::filter_rule_x(m, ct, j, blk.role_body, hits, nh);
         detail::sort_hits(hits, nh);
         if (nh > 0) detail::emit(ct, j, hits, nh, w);
     };
@@ -150,8 +153,10 @@ void find_candidates_brute_force(const Model& m, const ContactTopology& ct, cons
         for (int32_t t = 0; t < ct.num_sub_tris(); ++t) {
             const Real reach = g.tri_radius[t] + cm.buffer;
             if (norm2(xj - g.tri_center[t]) >= reach * reach) continue;
-            if (!is_contactor_for(cm, ct, ct.sub_body[t], m.node_body[target_node(ct, j)]))
-                continue;
+            const BodyId bj = m.node_body[target_node(ct, j)];
+            const bool self_pair = ct.sub_body[t] == bj && ct.body_self[static_cast<size_t>(bj)] &&
+                                   rule_x_allows(ct, m.tri_nodes.data(), j, t);
+            if (!self_pair && !is_contactor_for(cm, ct, ct.sub_body[t], bj)) continue;
             g.query.push_back(t);
         }
         if (!g.query.empty()) {

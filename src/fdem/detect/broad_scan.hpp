@@ -93,10 +93,14 @@ struct NodeGrid {
     int32_t nx = 0, ny = 0;
 };
 
-/// The query of one target node: position, role test, block of cells [cx0, cx1] x [cy0, cy1].
+/// The query of one target node: position, role test, block of cells [cx0, cx1] x [cy0, cy1];
+/// self = the node's body contacts itself (ContactTopology::body_self): the role test lets its
+/// own sub-triangles through and the caller filters them by rule X (filter_rule_x()).
 struct Block {
     Vec2 xj;
     RoleTest role;
+    bool self = false;
+    BodyId role_body = 0;  ///< the node's body
     int32_t cx0 = 0, cx1 = -1, cy0 = 0, cy1 = -1;
 };
 
@@ -112,6 +116,15 @@ inline bool node_block(const Model& m, const ContactTopology& ct, const NodeGrid
     q.role.t = bj;  // is_contactor_for(., bj) as a test on the key
     q.role.lo = cm.two_way ? (fixed_j ? kFixedKey : INT32_MAX) : bj;
     q.role.hi = cm.two_way ? INT32_MAX : kFixedKey;
+    q.self = ct.body_self[static_cast<size_t>(bj)] != 0;
+    q.role_body = bj;
+    if (q.self) {
+        // own sub-triangles pass (key bj): no key equals -1; one-way, key < bj + 1 admits bj
+        // (the role rule orders different bodies; within one body every pair is evaluated,
+        // each crack face as target of the other: the two-way evaluation of theory §6.7)
+        q.role.t = -1;
+        if (!cm.two_way) q.role.lo = bj + 1;
+    }
     const Real vx = (xj.x - g.lo.x) * g.inv, vy = (xj.y - g.lo.y) * g.inv;
     if (!(vx >= -1 && vy >= -1 && vx < g.nx + 1 && vy < g.ny + 1)) return false;  // also NaN
     // floor without a libm call: truncation, minus 1 below it (|v| < 2^31 here)
@@ -172,6 +185,21 @@ inline int32_t scan_rows(const CellTris& a, const Block& q, int32_t* __restrict 
 /// scan_rows for the node's role test.
 inline int32_t scan_block(const CellTris& a, const Block& q, int32_t* __restrict hits) {
     return q.role.lo == INT32_MAX ? scan_rows<false>(a, q, hits) : scan_rows<true>(a, q, hits);
+}
+
+/// Rule X on the hits h[0 .. n) of target j of a self-contact body bj: drop own sub-triangles
+/// whose parent mesh triangle touches j's sector (rule_x_allows()); returns the count kept, in
+/// the same order.
+inline int32_t filter_rule_x(const Model& m, const ContactTopology& ct, NodeId j, BodyId bj,
+                             int32_t* h, int32_t n) {
+    int32_t kept = 0;
+    for (int32_t k = 0; k < n; ++k) {
+        const int32_t s = h[k];
+        h[kept] = s;
+        kept += ct.sub_body[static_cast<size_t>(s)] != bj ||
+                rule_x_allows(ct, m.tri_nodes.data(), j, s);
+    }
+    return kept;
 }
 
 /// Sort the n distinct ids h ascending (insertion sort: a few, nearly in order).
