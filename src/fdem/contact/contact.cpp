@@ -142,6 +142,47 @@ void init_contact_state(const Model& m, State& s) {
     cs.active_next.reserve(2 * nb + 16);
 }
 
+void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> dirty) {
+    ContactState& cs = s.contact;
+    const NodeId old_base = s.topology.edge_target_base;
+    const std::vector<std::array<NodeId, 2>> old_edges = s.topology.boundary_edges;
+    rebuild_topology(m, dirty, s.node_sector, s.topology);
+    const ContactTopology& ct = s.topology;
+    if (m.contact.algorithm == ContactAlgorithm::None ||
+        m.contact.algorithm == ContactAlgorithm::LegacyTriangle)
+        return;
+    const size_t nv = static_cast<size_t>(ct.num_virtual());
+    cs.xv.assign(nv, Vec2{});
+    cs.vv.assign(nv, Vec2{});
+
+    // an edge target's history follows its edge (the triangle's own copies, oriented): a broken
+    // joint adds boundary edges and never removes one, so every old edge is found
+    if (ct.num_edge_targets() > 0) {
+        std::vector<std::pair<std::array<NodeId, 2>, int32_t>> by_nodes;
+        by_nodes.reserve(ct.boundary_edges.size());
+        for (size_t e = 0; e < ct.boundary_edges.size(); ++e)
+            by_nodes.emplace_back(ct.boundary_edges[e], static_cast<int32_t>(e));
+        std::sort(by_nodes.begin(), by_nodes.end());
+        size_t kept = 0;
+        for (ActiveContact& a : cs.active) {
+            if (a.node >= old_base) {
+                const auto& e = old_edges[static_cast<size_t>(a.node - old_base)];
+                const auto it =
+                    std::lower_bound(by_nodes.begin(), by_nodes.end(), std::pair{e, int32_t{-1}});
+                if (it == by_nodes.end() || it->first != e) continue;  // (not expected)
+                a.node = ct.edge_target_base + it->second;
+            }
+            cs.active[kept++] = a;
+        }
+        cs.active.resize(kept);
+        std::sort(cs.active.begin(), cs.active.end(),
+                  [](const ActiveContact& a, const ActiveContact& b) {
+                      return a.node < b.node || (a.node == b.node && a.body < b.body);
+                  });
+    }
+    cs.need_rebuild = true;
+}
+
 void update_virtual_nodes(const Model&, State& s) {
     const ContactTopology& ct = s.topology;
     ContactState& cs = s.contact;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <span>
 #ifdef __SSE2__
 #include <emmintrin.h>
 #endif
@@ -19,6 +20,14 @@ void resolve_contact_params(Model& m);
 /// Prepare contact state for a fresh run: builds s.topology (build_topology()) and sizes the
 /// buffers (no allocation later).
 void init_contact_state(const Model& m, State& s);
+
+/// After joints broke (fracture, docs/theory.md §6.15): rebuild s.topology for the bodies
+/// `dirty` with the state's sectors (rebuild_topology(m, dirty, s.node_sector, s.topology)),
+/// resize the virtual-node buffers, move the pair histories of edge targets to the new ids of
+/// the same edges (their ids shift with the virtual nodes and boundary edges before them; real
+/// node targets and contactor bodies keep theirs) and mark the broad phase for rebuild.
+/// Allocates: for steps with breaks only.
+void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> dirty);
 
 /// Add contact forces to s.f and s.f_contact for positions s.x and velocities s.v (v^{n-1/2});
 /// update pair history, contact energy and contact dissipation in s.energy / s.contact.

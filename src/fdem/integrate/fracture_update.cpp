@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "contact/contact.hpp"
 #include "fdem/build.hpp"
 #include "fracture/joints.hpp"
 
@@ -105,7 +106,8 @@ void process_breaks(const Model& m, State& s) {
     }
     std::sort(dirty.begin(), dirty.end());
     dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
-    rebuild_topology(m, dirty, s.topology);
+    // welded topology with the new sectors; edge-target histories follow their edges
+    rebuild_contact_topology(m, s, dirty);
     topology_changed(s);
 }
 
@@ -116,7 +118,7 @@ void rebuild_fracture_views(const Model& m, State& s) {
     for (BodyId b = 0; b < m.num_bodies(); ++b) {
         if (m.bodies[static_cast<size_t>(b)].fracture) dirty.push_back(b);
     }
-    rebuild_topology(m, dirty, s.topology);
+    rebuild_topology(m, dirty, s.node_sector, s.topology);
     const size_t nv = static_cast<size_t>(s.topology.num_virtual());
     if (s.contact.xv.size() != nv) {  // restored below from the file; only the size matters
         s.contact.xv.assign(nv, Vec2{});

@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "contact/contact.hpp"
 #include "fdem/simulate.hpp"
 #include "fracture/sectors.hpp"
 #include "support/jointed.hpp"
+#include "support/topology_compare.hpp"
 
 namespace fdem {
 namespace {
@@ -32,7 +34,7 @@ constexpr Real kCrackY = 2.0;
 //       |     base (fixed)      |
 //  y=-1 +-----------------------+
 //      x=0  0.5            6.5  7
-Model cracked_block() {
+Model cracked_block(bool far_body = false) {
     Model m;
     Material mat;
     mat.name = "rock";
@@ -49,17 +51,26 @@ Model cracked_block() {
     std::vector<int32_t> ids(bm.tris.size());
     std::iota(ids.begin(), ids.end(), 0);
     add_bodies(m, bm, ids, base);
+    if (far_body) {
+        // body 1: a fixed, fully jointed 2 x 2 square far away, in contact with nothing
+        testing::add_jointed_body(m, make_rectangle_mesh(20, 20, 1, 1, 2, 2), testing::all_edges, 0,
+                                  true);
+    }
     const MeshData block = make_rectangle_mesh(0.5, 0, 6, 4, 6, 4, true);
-    testing::add_jointed_body(m, block, [&](int32_t a, int32_t b) {
+    auto on_crack = [&](int32_t a, int32_t b) {
         return block.nodes[a].y == kCrackY && block.nodes[b].y == kCrackY;
-    });
-    return testing::finalize_jointed(m, testing::test_joint_material(10 * kE));
+    };
+    testing::add_jointed_body(m, block, on_crack, 0, false, {}, on_crack);  // crack pre-broken
+    finalize_model(m);
+    return m;
 }
 
-// crack joints in order of x
+// crack joints (of the last body) in order of x
 std::vector<int32_t> crack_joints(const Model& m) {
-    std::vector<int32_t> j(static_cast<size_t>(m.joints.num_joints()));
-    std::iota(j.begin(), j.end(), 0);
+    std::vector<int32_t> j;
+    for (int32_t k = 0; k < m.joints.num_joints(); ++k) {
+        if (m.node_body[m.joints.nodes[k][0]] == m.num_bodies() - 1) j.push_back(k);
+    }
     std::sort(j.begin(), j.end(), [&](int32_t a, int32_t b) {
         const auto xa = m.node_x0[m.joints.nodes[a][0]].x + m.node_x0[m.joints.nodes[a][1]].x;
         const auto xb = m.node_x0[m.joints.nodes[b][0]].x + m.node_x0[m.joints.nodes[b][1]].x;
@@ -80,8 +91,8 @@ bool in_upper(const Model& m, const State& s, NodeId i) {
     return false;
 }
 
-// State with the sectors and topology of `broken` joints (make_state builds the topology with
-// the state's sectors, which it does not compute yet: set them and build again)
+// State whose contact topology has the sectors of `broken` joints (make_state's are those of the
+// model's pre-broken joints): for contact-only evaluations at other statuses
 State cracked_state(const Model& m, const std::vector<int32_t>& broken, Real dt) {
     State s = make_state(m, dt);
     compute_node_sectors(m, statuses(m, broken), s.node_sector);
@@ -94,7 +105,7 @@ State cracked_state(const Model& m, const std::vector<int32_t>& broken, Real dt)
 TEST(SelfContact, CrackCarriesTheUpperHalf) {
     Model m = cracked_block();
     m.mass_damping = {150.0, 1e9};  // critical-ish for the lowest modes: rest in ~0.1 s
-    State s = cracked_state(m, crack_joints(m), 1.0);
+    State s = make_state(m, 1.0);   // the crack pre-broken: welded topology from make_state
     s.dt = 0.5 * stable_time_step(m, s.topology);
     const int steps = static_cast<int>(0.25 / s.dt);
     for (int n = 0; n < steps; ++n)
@@ -165,7 +176,7 @@ TEST(SelfContact, SplitChangesNoForceAwayFromTheLastJoint) {
     Model m = cracked_block();
     m.mass_damping = {150.0, 1e9};
     const std::vector<int32_t> crack = crack_joints(m);
-    State rest = cracked_state(m, crack, 1.0);
+    State rest = make_state(m, 1.0);
     rest.dt = 0.5 * stable_time_step(m, rest.topology);
     const int steps = static_cast<int>(0.25 / rest.dt);
     for (int n = 0; n < steps; ++n)
@@ -209,6 +220,51 @@ TEST(SelfContact, SplitChangesNoForceAwayFromTheLastJoint) {
         "contact on the upper half: %.6g of its weight before the split, %.6g after; max change "
         "at x < 4.5: %.3g of the largest force\n",
         upper_before / w_upper, upper_after / w_upper, max_diff / f_scale);
+}
+
+// rebuild_contact_topology moves the histories of edge targets to their edges' new ids: a run
+// where a joint of another body (body 1, before the block, so that every edge target id of the
+// block shifts) breaks at step N continues bitwise as the run where it was broken from the start
+TEST(SelfContact, RebuildKeepsEdgeTargetHistories) {
+    Model m = cracked_block(true);
+    m.mass_damping = {150.0, 1e9};
+    const std::vector<int32_t> crack = crack_joints(m);
+    ASSERT_EQ(crack.size(), 6u);
+    int32_t far_joint = -1;
+    for (int32_t k = 0; k < m.joints.num_joints() && far_joint < 0; ++k) {
+        if (m.node_body[m.joints.nodes[k][0]] == 1) far_joint = k;
+    }
+    State a = make_state(m, 1.0);  // the far joint broken from the start
+    a.joints.status[static_cast<size_t>(far_joint)] = JointStatus::Broken;
+    compute_node_sectors(m, a.joints.status, a.node_sector);
+    init_contact_state(m, a);
+    State b = make_state(m, 1.0);
+    ASSERT_NE(a.topology.edge_target_base, b.topology.edge_target_base);
+    a.dt = b.dt = 0.5 * stable_time_step(m, a.topology);
+    for (int n = 0; n < 300; ++n) {
+        step(m, a);
+        step(m, b);
+    }
+    int edge_histories = 0;
+    for (const ActiveContact& c : b.contact.active)
+        edge_histories += c.node >= b.topology.edge_target_base ? 1 : 0;
+    EXPECT_GT(edge_histories, 10);
+
+    b.joints.status[static_cast<size_t>(far_joint)] = JointStatus::Broken;
+    compute_node_sectors(m, b.joints.status, b.node_sector);
+    const BodyId dirty[1] = {1};
+    rebuild_contact_topology(m, b, dirty);
+    a.contact.need_rebuild = true;  // the same broad-phase cadence in both runs
+    EXPECT_EQ(testing::differing_fields(a.topology, b.topology), "");
+    for (int n = 0; n < 300; ++n) {
+        step(m, a);
+        step(m, b);
+    }
+    EXPECT_EQ(std::memcmp(a.x.data(), b.x.data(), a.x.size() * sizeof(Vec2)), 0);
+    EXPECT_EQ(std::memcmp(a.v.data(), b.v.data(), a.v.size() * sizeof(Vec2)), 0);
+    EXPECT_EQ(std::memcmp(&a.energy.contact, &b.energy.contact, sizeof(Real)), 0);
+    EXPECT_EQ(std::memcmp(&a.energy.dissipated_contact, &b.energy.dissipated_contact, sizeof(Real)),
+              0);
 }
 
 }  // namespace
