@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <random>
 
@@ -249,6 +250,44 @@ TEST(WeldedTopology, RebuildAfterBreaksEqualsFreshBuild) {
     compute_node_sectors(j, statuses(j), sec0);
     build_topology(j, sec0, intact);
     EXPECT_NE(differing_fields(t, intact), "");
+}
+
+// validate_topology checks the welded form: a wrong sector, a copy of a boundary sector left off
+// the boundary, a self-contact flag that is not Body::fracture
+TEST(WeldedTopology, ValidatorCatchesWeldedCorruption) {
+    const Model j = base_and_block(true);
+    std::vector<NodeId> sec;
+    compute_node_sectors(j, statuses(j), sec);
+    ContactTopology good;
+    build_topology(j, sec, good);
+    ASSERT_TRUE(validate_topology(j, good).empty());
+    auto first_message = [&](const std::function<void(ContactTopology&)>& corrupt) {
+        ContactTopology t = good;
+        corrupt(t);
+        const std::vector<std::string> bad = validate_topology(j, t);
+        return bad.empty() ? std::string() : bad.front();
+    };
+    // a copy (not its own representative) of an inner vertex, given a larger node as sector
+    NodeId copy = kNone;
+    for (NodeId i = j.bodies[1].node_begin; i < j.bodies[1].node_end && copy == kNone; ++i) {
+        if (sec[i] != i && !good.node_on_boundary[i]) copy = i;
+    }
+    ASSERT_NE(copy, kNone);
+    EXPECT_EQ(first_message([&](ContactTopology& t) {
+                  t.node_weld[copy] = copy + 1;
+              }).rfind("node_weld: node", 0),
+              0u);
+    NodeId bcopy = kNone;
+    for (NodeId i = j.bodies[1].node_begin; i < j.bodies[1].node_end && bcopy == kNone; ++i) {
+        if (sec[i] != i && good.node_on_boundary[i]) bcopy = i;
+    }
+    ASSERT_NE(bcopy, kNone);
+    EXPECT_EQ(first_message([&](ContactTopology& t) {
+                  t.node_on_boundary[bcopy] = 0;
+              }).rfind("node_on_boundary: node", 0),
+              0u);
+    EXPECT_EQ(first_message([](ContactTopology& t) { t.body_self[1] = 0; }).rfind("body_self", 0),
+              0u);
 }
 
 }  // namespace
