@@ -42,7 +42,7 @@ def sub1(pattern, repl, text, what):
     return text
 
 
-def make_scenario(out, full, variant, k, end_factor=1.0):
+def make_scenario(out, full, variant, k, end_factor=1.0, damping=None):
     """scenario.toml with absolute mesh paths, platen speed v/k (end time and interval x k),
     the 1.25 mm mesh (--full) and variant b (f_t = c, frictionless platens)."""
     text = open(os.path.join(HERE, "scenario.toml")).read()
@@ -55,6 +55,9 @@ def make_scenario(out, full, variant, k, end_factor=1.0):
     text = sub1(r"velocity = \[0\.0, -0\.1\]", f"velocity = [0.0, {-0.1 / k!r}]", text, "top velocity")
     text = sub1(r"velocity = \[0\.0, 0\.1\] ", f"velocity = [0.0, {0.1 / k!r}] ", text,
                 "bottom velocity")
+    if damping is not None:
+        text = sub1(r"(?m)^damping_ratio = [0-9.e+-]+", f"damping_ratio = {damping!r}", text,
+                    "the rock's damping_ratio")
     if full:
         text = sub1(r"(mesh_size = )2\.5e-3(\s+# m: h_max)", r"\g<1>1.25e-3\2", text, "mesh_size")
     if variant == "b":
@@ -73,6 +76,7 @@ def main():
     ap.add_argument("--variant", choices=["a", "b"], default="a")
     ap.add_argument("--rates")
     ap.add_argument("--end-factor", type=float, default=1.0)
+    ap.add_argument("--damping", type=float, help="the rock's damping_ratio (0: undamped)")
     ap.add_argument("--out")
     ap.add_argument("--fdem", default="build/release/fdem")
     ap.add_argument("--threads", type=int, default=1)
@@ -87,7 +91,7 @@ def main():
     for k in rates:
         d = os.path.join(out, f"v_over_{k:g}")
         os.makedirs(d, exist_ok=True)
-        scen = make_scenario(d, a.full, a.variant, k, a.end_factor)
+        scen = make_scenario(d, a.full, a.variant, k, a.end_factor, a.damping)
         wall = None
         if not a.no_run:
             t0 = time.time()
