@@ -72,8 +72,12 @@ def main():
     wall = None
     if not a.no_run:
         t0 = time.time()
-        subprocess.run([a.fdem, "run", scen, "--out", out, "--quiet", "--threads", str(a.threads)],
-                       check=True)
+        rc = subprocess.run([a.fdem, "run", scen, "--out", out, "--quiet", "--threads",
+                             str(a.threads)]).returncode
+        if rc == 1:  # a run-time check stopped it (message above): evaluate what was written
+            print(f"note: fdem stopped early (exit 1); evaluating the rows written before")
+        elif rc != 0:
+            sys.exit(rc)
         wall = time.time() - t0
 
     # Load from the platens' support reactions (interval averages, docs/output.md bodies.csv):
