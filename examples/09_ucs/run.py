@@ -22,9 +22,7 @@ import csv
 import math
 import os
 import re
-import subprocess
 import sys
-import time
 import tomllib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -94,14 +92,7 @@ def main():
         scen = make_scenario(d, a.full, a.variant, k, a.end_factor, a.damping)
         wall = None
         if not a.no_run:
-            t0 = time.time()
-            rc = subprocess.run([a.fdem, "run", scen, "--out", d, "--quiet", "--threads",
-                                 str(a.threads)]).returncode
-            if rc == 1:  # a run-time check stopped it (message above): evaluate the rows written
-                print(f"note: v/{k:g}: fdem stopped early (exit 1); evaluating the rows written")
-            elif rc != 0:
-                sys.exit(rc)
-            wall = time.time() - t0
+            wall = labtest.run_fdem(a.fdem, scen, d, a.threads, what=f"v/{k:g}: ")
         cfg = tomllib.load(open(scen, "rb"))
         rows = labtest.read_csv(os.path.join(d, "bodies.csv"))
         t, closure, load = labtest.platen_curve(rows, "platen_top/platen_top",

@@ -93,9 +93,10 @@ int main(int argc, char** argv) {
             while (std::getline(ss, item, ','))
                 only.insert(item);
         } else {
-            std::fprintf(stderr,
-                         "usage: fdem_validate [--quick] [--out DIR] [--only "
-                         "block,disk,slide,field,hertz,sensitivity,legacy,composite,pull_apart,...]\n");
+            std::fprintf(
+                stderr,
+                "usage: fdem_validate [--quick] [--out DIR] [--only "
+                "block,disk,slide,field,hertz,sensitivity,legacy,composite,pull_apart,...]\n");
             return 2;
         }
     }

@@ -168,8 +168,8 @@ TEST(History, FractureColumns) {
     ASSERT_EQ(head.size(), 18u);
     ASSERT_EQ(row.size(), 18u);
     EXPECT_EQ(head[11], "active_contacts");
-    const std::vector<std::string> cols = {"energy.joint",   "energy.fracture", "joints.softening",
-                                           "joints.broken",  "crack_length",    "fragments"};
+    const std::vector<std::string> cols = {"energy.joint",  "energy.fracture", "joints.softening",
+                                           "joints.broken", "crack_length",    "fragments"};
     const std::vector<std::string> vals = {"0.125", "3.5", "1", "2", "2.5", "3"};
     for (size_t k = 0; k < 6; ++k) {
         EXPECT_EQ(head[12 + k], cols[k]);
