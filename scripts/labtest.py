@@ -315,3 +315,60 @@ def plot_cracks(png, final, o_r, body_name, title, magnify=20.0):
     fig.tight_layout()
     fig.savefig(png, dpi=70)
     plt.close(fig)
+
+
+# ---- validation report rows (spec fracture.md §11): the lab-test examples that are validation
+# cases (V4 Brazilian, V5 UCS, V6 three-point bending, V8 impact) write, with `run.py --validate
+# DIR`, DIR/checks_<case>.csv in the format tools/validate/fdem_validate.cpp writes, so
+# scripts/validate_report.py merges them into docs/validation/README.md.
+
+def check(id, name, measured, expected, relation, tol=0.0, unit="", why=""):
+    """One report row. relation: "rel" (|m/e - 1| <= tol), "abs" (|m - e| <= tol), "range"
+    (expected <= m <= tol, i.e. tol is the upper bound), "at_most" (m <= e), "at_least" (m >= e),
+    "report" (no pass/fail), "bool" (measured 1 = pass; expected ignored)."""
+    m, e = float(measured), float(expected)
+    if relation == "rel":
+        ok, text = math.isfinite(m) and abs(m / e - 1.0) <= tol, f"± {100 * tol:.3g} %"
+    elif relation == "abs":
+        ok, text = math.isfinite(m) and abs(m - e) <= tol, f"± {tol:.3g} {unit}".strip()
+    elif relation == "range":
+        ok, text = math.isfinite(m) and e <= m <= tol, f"[{e:.3g}, {tol:.3g}]"
+    elif relation == "at_most":
+        ok, text = math.isfinite(m) and m <= e, "≤ expected"
+    elif relation == "at_least":
+        ok, text = math.isfinite(m) and m >= e, "≥ expected"
+    elif relation == "bool":
+        ok, text = m == 1.0, "yes"
+    elif relation == "report":
+        ok, text = True, "—"
+    else:
+        raise ValueError(f"unknown relation {relation!r}")
+    return {"id": id, "name": name, "measured": f"{m:.8g}", "expected": f"{e:.8g}",
+            "relation": relation, "tolerance": f"{float(tol):.8g}", "tolerance_text": text,
+            "unit": unit, "pass": "report" if relation == "report" else ("pass" if ok else "FAIL"),
+            "why": why}
+
+
+def write_checks(folder, case, rows, figures=()):
+    """Write folder/checks_<case>.csv (rows from check()) and copy each (png_path, title) of
+    figures to folder/fig_<case>_<k>.png with its title in fig_<case>_<k>.title (the report shows
+    them). Returns the number of failed rows."""
+    import shutil
+    os.makedirs(folder, exist_ok=True)
+    cols = ["id", "name", "measured", "expected", "relation", "tolerance", "tolerance_text", "unit",
+            "pass", "why"]
+    with open(os.path.join(folder, f"checks_{case}.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=cols)
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
+    for k, (png, title) in enumerate(figures):
+        if png and os.path.exists(png):
+            shutil.copyfile(png, os.path.join(folder, f"fig_{case}_{k}.png"))
+            with open(os.path.join(folder, f"fig_{case}_{k}.title"), "w") as f:
+                f.write(title)
+    failed = [r for r in rows if r["pass"] == "FAIL"]
+    for r in rows:
+        print(f"  [{r['pass']}] {r['id']} {r['name']}: {r['measured']} {r['unit']} "
+              f"(expected {r['expected']} {r['tolerance_text']})")
+    return len(failed)

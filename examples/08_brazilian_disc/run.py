@@ -56,6 +56,9 @@ def main():
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--no-run", action="store_true")
+    ap.add_argument("--validate", metavar="DIR",
+                    help="also write DIR/checks_brazilian.csv for scripts/validate's report")
+    ap.add_argument("--quick", action="store_true", help="the default size (scripts/validate --quick)")
     a = ap.parse_args()
     out = a.out or ("out/08_brazilian_disc" + ("_unaligned" if a.unaligned else "") +
                     ("_full" if a.full else ""))
@@ -139,7 +142,22 @@ def main():
               f"{h['energy.fracture']:.3g} J/m")
     ok = BAND[0] <= ratio <= BAND[1] and crack["along_diameter"] and q["ke_ratio"] <= 0.01
     print("  V4 " + ("met" if ok else "NOT met"))
-    if a.check and not ok:
+    failed = 0
+    if a.validate:
+        why = "spec fracture.md §11 V4 (ISRM 1978; Rocco et al. 1999)"
+        tag = f"Brazilian D/l_ch = {D / lch:.3g}, h = {disc['mesh_size'] * 1e3:g} mm: "
+        rows = [labtest.check("V4", tag + "sigma_BTS / f_t = 2 P_max/(pi D t f_t)", ratio, BAND[0],
+                              "range", BAND[1], "", why),
+                labtest.check("V4", tag + "broken joints at the peak within D/10 of the loaded "
+                              "diameter, first breaks in the central third", crack["along_diameter"],
+                              1, "bool", 0, "", why + "; labtest.crack_report"),
+                labtest.check("V4", tag + "max KE / E_elastic before the peak", q["ke_ratio"], 0.01,
+                              "at_most", 0, "", "spec fracture.md §11: quasi-static, <= 1 %")]
+        failed = labtest.write_checks(
+            a.validate, "brazilian", rows,
+            [(os.path.join(out, "curve.png"), tag + "load against platen closure (V4)"),
+             (os.path.join(out, "crack.png"), tag + "broken joints (V4)")])
+    if (a.check and not ok) or failed:
         sys.exit(1)
 
 

@@ -80,6 +80,9 @@ def main():
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--no-run", action="store_true")
+    ap.add_argument("--validate", metavar="DIR",
+                    help="also write DIR/checks_ucs[_b].csv for scripts/validate's report")
+    ap.add_argument("--quick", action="store_true", help="the default size (scripts/validate --quick)")
     a = ap.parse_args()
     rates = [float(r) for r in (a.rates or ("1,2,4" if a.full else "1,2")).split(",")]
     out = a.out or ("out/09_ucs" + ("_b" if a.variant == "b" else "") + ("_full" if a.full else ""))
@@ -170,7 +173,34 @@ def main():
         print(f"  peak/MC = {ratio:.3f} (spec V5 (b): [{MC_BAND[0]}, {MC_BAND[1]}])")
         ok &= MC_BAND[0] <= ratio <= MC_BAND[1]
     print("  V5 " + ("met" if ok else "NOT met"))
-    if a.check and not ok:
+    failed = 0
+    if a.validate:
+        why = "spec fracture.md §11 V5"
+        tag = (f"UCS ({a.variant}), h = {spec['mesh_size'] * 1e3:g} mm, damping ratio "
+               f"{rock.get('damping_ratio', 0):g}: ")
+        rows = []
+        if len(runs) >= 2:
+            rows.append(labtest.check("V5", tag + f"peak change v/{runs[-2]['k']:g} -> "
+                                      f"v/{runs[-1]['k']:g}", ch, RATE_TOL, "at_most", 0, "",
+                                      why + " (a): rate independence <= 3 %"))
+        mc_rel = "range" if a.variant == "b" else "report"
+        rows.append(labtest.check("V5", tag + "peak / Mohr-Coulomb 2c cos(phi)/(1 - sin(phi))",
+                                  ratio, MC_BAND[0], mc_rel, MC_BAND[1], "",
+                                  why + (" (b): [0.9, 1.5]" if a.variant == "b" else
+                                         " (a): reported (splitting by tension lowers it)")))
+        for r in runs:
+            rows.append(labtest.check("V5", tag + f"v/{r['k']:g}: energy error (largest energy) "
+                                      "to the end", r["q"]["energy_error"], 0.01, "at_most", 0, "",
+                                      why + ": energy balance <= 1 %"))
+            rows.append(labtest.check("V5", tag + f"v/{r['k']:g}: max KE / E_elastic before the "
+                                      "peak", r["q"]["ke_ratio"], 0.01, "at_most", 0, "",
+                                      "spec fracture.md §11: quasi-static, <= 1 %"))
+        case = "ucs" + ("_b" if a.variant == "b" else "")
+        failed = labtest.write_checks(
+            a.validate, case, rows,
+            [(os.path.join(out, "curve.png"), tag + "stress against strain (V5)"),
+             (os.path.join(out, "crack.png"), tag + "broken joints (V5)")])
+    if (a.check and not ok) or failed:
         sys.exit(1)
 
 
