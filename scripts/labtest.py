@@ -36,7 +36,15 @@ def run_fdem(fdem, scen, out, threads, what=""):
         print(f"note: {what}fdem stopped early (exit 1); evaluating the rows written before")
     elif rc != 0:
         sys.exit(rc)
+    with open(os.path.join(out, "run_status.txt"), "w") as f:
+        f.write("completed\n" if rc == 0 else "stopped early (exit 1)\n")
     return time.time() - t0
+
+
+def run_completed(out):
+    """True if the last run_fdem into OUT reached its end time (OUT/run_status.txt)."""
+    path = os.path.join(out, "run_status.txt")
+    return os.path.exists(path) and open(path).read().startswith("completed")
 
 
 def absolute_meshes(text, folder):
@@ -213,13 +221,14 @@ class JointEdges:
         return n >= 2
 
 
-def crack_report(out, frame_list, t_peak, o_p_per_m, D, body_name):
+def crack_report(out, frame_list, t_peak, o_p_per_m, D, body_name, interval=None):
     """Where joints softened and broke. Breaks from OUT/cracks.csv (one row per break: time,
     mid-point, mode; docs/output.md), the process zone at the peak from the peak row's frame
     (joints opened past the elastic limit). The loaded diameter is x = 0. Spec V4: broken joints
     at peak within +-D/10 of it (here: the breaks up to the peak row, whose interval holds the
-    largest average load), first breaks within the central third |y| <= D/6 (here: the first
-    five breaks)."""
+    largest average load; if none broke by then and INTERVAL, the output interval, is given: the
+    breaks of the next interval), first breaks within the central third |y| <= D/6 (here: the
+    first five breaks)."""
     res = {"along_diameter": False, "final_frame": None, "summary": "no output"}
     parts = []
     if frame_list:
@@ -248,11 +257,17 @@ def crack_report(out, frame_list, t_peak, o_p_per_m, D, body_name):
             f"; {sum(central)}/{len(first)} in the central third |y| <= D/6")
         ok &= all(central)
         upto = [e for e in ev if e["time"] <= t_peak]
+        label = "up to the peak row"
+        if not upto and interval:
+            # the load can peak while the process zone softens, before any joint breaks: then
+            # the breaks of the interval after the peak row (the load's first drop) stand for it
+            upto = [e for e in ev if e["time"] <= t_peak + interval]
+            label = "in the interval after the peak row (none before it)"
         if upto:
             near = [abs(e["x"]) <= D / 10 for e in upto]
             L = sum(e["h"] for e in upto)
             Ln = sum(e["h"] for e, n in zip(upto, near) if n)
-            parts.append(f"breaks up to the peak row: {len(upto)}, "
+            parts.append(f"breaks {label}: {len(upto)}, "
                          f"{L * 1e3:.1f} mm, {Ln / L * 100:.0f} % of the length within |x| <= D/10")
             ok &= all(near)
         else:

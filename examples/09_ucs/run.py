@@ -3,9 +3,11 @@
 
 Usage (from the repository root, after building):
     /usr/bin/python3 examples/09_ucs/run.py               # quick: mesh 2.5 mm, v and v/2
-    /usr/bin/python3 examples/09_ucs/run.py --full        # reference: mesh 1.25 mm, v, v/2, v/4
+    /usr/bin/python3 examples/09_ucs/run.py --full        # spec V5 (a): v, v/2, v/4
+    /usr/bin/python3 examples/09_ucs/run.py --full --fine # reference: mesh 1.25 mm, v, v/2, v/4
     /usr/bin/python3 examples/09_ucs/run.py --variant b   # spec V5 (b): f_t = c, frictionless platens
-Options: --out DIR (default out/09_ucs[_b][_full]), --fdem PATH (default build/release/fdem),
+Options: --validate DIR (write DIR/checks_ucs[_b].csv and figures for scripts/validate),
+--out DIR (default out/09_ucs[_b][_fine][_full]), --fdem PATH (default build/release/fdem),
 --threads N (default 1), --rates 1,2 (speed divisors K: speed v/K, end time and output interval
 x K), --end-factor F (end time x F as well: the peak comes at ~0.45 of the end time at v and
 earlier at slower speeds), --check (exit 1 when a target is missed),
@@ -40,9 +42,9 @@ def sub1(pattern, repl, text, what):
     return text
 
 
-def make_scenario(out, full, variant, k, end_factor=1.0, damping=None):
+def make_scenario(out, fine, variant, k, end_factor=1.0, damping=None):
     """scenario.toml with absolute mesh paths, platen speed v/k (end time and interval x k),
-    the 1.25 mm mesh (--full) and variant b (f_t = c, frictionless platens)."""
+    the 1.25 mm mesh (--fine) and variant b (f_t = c, frictionless platens)."""
     text = open(os.path.join(HERE, "scenario.toml")).read()
     text = labtest.absolute_meshes(text, HERE)
     cfg = tomllib.loads(text)
@@ -56,7 +58,7 @@ def make_scenario(out, full, variant, k, end_factor=1.0, damping=None):
     if damping is not None:
         text = sub1(r"(?m)^damping_ratio = [0-9.e+-]+", f"damping_ratio = {damping!r}", text,
                     "the rock's damping_ratio")
-    if full:
+    if fine:
         text = sub1(r"(mesh_size = )2\.5e-3(\s+# m: h_max)", r"\g<1>1.25e-3\2", text, "mesh_size")
     if variant == "b":
         c = cfg["material"][0]["fracture"]["cohesion"]
@@ -70,7 +72,8 @@ def make_scenario(out, full, variant, k, end_factor=1.0, damping=None):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--full", action="store_true")
+    ap.add_argument("--full", action="store_true", help="speeds v, v/2, v/4 (spec V5 (a))")
+    ap.add_argument("--fine", action="store_true", help="mesh 1.25 mm instead of 2.5 mm")
     ap.add_argument("--variant", choices=["a", "b"], default="a")
     ap.add_argument("--rates")
     ap.add_argument("--end-factor", type=float, default=1.0)
@@ -85,14 +88,15 @@ def main():
     ap.add_argument("--quick", action="store_true", help="the default size (scripts/validate --quick)")
     a = ap.parse_args()
     rates = [float(r) for r in (a.rates or ("1,2,4" if a.full else "1,2")).split(",")]
-    out = a.out or ("out/09_ucs" + ("_b" if a.variant == "b" else "") + ("_full" if a.full else ""))
+    out = a.out or ("out/09_ucs" + ("_b" if a.variant == "b" else "") + ("_fine" if a.fine else "") +
+                    ("_full" if a.full else ""))
     os.makedirs(out, exist_ok=True)
 
     runs = []
     for k in rates:
         d = os.path.join(out, f"v_over_{k:g}")
         os.makedirs(d, exist_ok=True)
-        scen = make_scenario(d, a.full, a.variant, k, a.end_factor, a.damping)
+        scen = make_scenario(d, a.fine, a.variant, k, a.end_factor, a.damping)
         wall = None
         if not a.no_run:
             wall = labtest.run_fdem(a.fdem, scen, d, a.threads, what=f"v/{k:g}: ")
