@@ -1,4 +1,4 @@
-// The joint kernel (docs/theory.md §9; spec fracture.md §2, §3, §5, §6, tests U1, U3, U8, V1, V2
+// The joint kernel (docs/theory.md §9; spec fracture.md §2, §3, §5, §6, tests U1, U3, U4, U8, V1, V2
 // at the level of one joint driven kinematically). Expected numbers come from the spec's
 // formulas written out here.
 #include "fracture/joints.hpp"
@@ -557,6 +557,95 @@ TEST(Joints, StableTimeStepBound) {
     EXPECT_LE(lambda, bound_w2 * (1 + 1e-6));
     EXPECT_GT(lambda, 0.5 * bound_w2);
     std::printf("[ dt ] power iteration omega^2 / Gershgorin bound = %.4f\n", lambda / bound_w2);
+}
+
+// U4 (spec §11): a fully jointed block under a uniform stress. Under a hydrostatic stress sigma I
+// every joint carries the traction sigma n and no shear, so its separation is the same function
+// of h for every orientation: delta = o n with o = sigma h/p in compression (eq. 9.5, linear) and
+// o = xi o_p, o_p = 2 h f_t/p, f_t (2 xi - xi^2) = sigma in tension (eqs. 9.4-9.5). With
+// h n = the edge vector turned by 90 degrees, the jumps around an interior vertex sum to the
+// turned sum of its edge vectors, zero on the structured meshes (symmetric stars), so the state
+// "every triangle translated rigidly by c_k, uniform stress sigma in every triangle" exists. The
+// test builds it (c_k propagated through the joints from triangle 0, every joint then checked)
+// and asks for equilibrium of every node copy: the joint forces of the kernel plus the CST
+// forces of the uniform stress (f_i = -A sigma grad N_i, written out here) plus the consistent
+// load of the traction sigma n on the block's outer edges. Joints that did not transmit the
+// triangles' traction (a wrong Simpson weight, sign, orientation or length) leave a residual;
+// by uniqueness of the linear equilibrium the uniform stress is then the block's solution.
+TEST(Joints, UniformStressPatch) {
+    for (const bool alternate : {false, true}) {
+        for (const double sig : {-0.5 * kFt, 0.3 * kFt}) {
+            const int n = 5;
+            const MeshData mesh = make_rectangle_mesh(0, 0, n * kH, n * kH, n, n, alternate);
+            const SplitMesh sm = split_mesh(mesh.nodes, mesh.tris);
+            Joints J;
+            J.laws.push_back(make_joint_law(material()));
+            add_edge_joints(J, sm.x0, sm.tris, sm.vertex, 0);
+            const size_t nn = sm.x0.size(), nt = sm.tris.size();
+            finalize_joints(J, static_cast<int32_t>(nn));
+            // separation per unit joint length (eqs. 9.4, 9.5)
+            const double xi = sig > 0 ? 1 - std::sqrt(1 - sig / kFt) : 0;
+            const double o_per_h = sig > 0 ? xi * 2 * kFt / kP : sig / kP;
+            // triangle of every node copy
+            std::vector<int> tri_of(nn, -1);
+            for (size_t t = 0; t < nt; ++t)
+                for (NodeId a : sm.tris[t])
+                    tri_of[a] = static_cast<int>(t);
+            // c_A - c_B = o n_A h-scaled (eq. 9.2: delta = x0 - x3, n into A), breadth first
+            std::vector<Vec2> c(nt);
+            std::vector<char> done(nt, 0);
+            done[0] = 1;
+            for (bool grew = true; grew;) {
+                grew = false;
+                for (const auto& q : J.nodes) {
+                    const int A = tri_of[q[0]], B = tri_of[q[3]];
+                    const Vec2 e = 0.5 * (sm.x0[q[1]] + sm.x0[q[2]] - sm.x0[q[0]] - sm.x0[q[3]]);
+                    const Vec2 jump = o_per_h * Vec2{-e.y, e.x};  // o n with h n = (-e_y, e_x) h
+                    if (done[A] && !done[B]) {
+                        c[B] = c[A] - jump, done[B] = 1, grew = true;
+                    } else if (done[B] && !done[A]) {
+                        c[A] = c[B] + jump, done[A] = 1, grew = true;
+                    }
+                }
+            }
+            std::vector<Vec2> x(nn), f(nn, Vec2{0, 0});
+            for (size_t i = 0; i < nn; ++i)
+                x[i] = sm.x0[i] + c[tri_of[i]];
+            JointState s = make_joint_state(J);
+            const JointPass pass = joint_forces(J, s, x, f, false);
+            // elements: f_i = -A sigma grad N_i = -(sigma/2) (edge opposite i turned outwards)
+            for (const auto& t : sm.tris) {
+                for (int k = 0; k < 3; ++k) {
+                    const Vec2 a = sm.x0[t[(k + 1) % 3]], b = sm.x0[t[(k + 2) % 3]];
+                    const Vec2 out{b.y - a.y, a.x - b.x};  // |b - a| times the outward normal
+                    f[t[k]] = f[t[k]] + (sig / 2) * out;
+                }
+            }
+            // outer edges: traction sigma n_out, half of it on each end copy
+            const double L = n * kH;
+            for (const auto& t : sm.tris) {
+                for (int k = 0; k < 3; ++k) {
+                    const Vec2 a = sm.x0[t[k]], b = sm.x0[t[(k + 1) % 3]];
+                    const bool outer = (a.x == 0 && b.x == 0) || (a.x == L && b.x == L) ||
+                                       (a.y == 0 && b.y == 0) || (a.y == L && b.y == L);
+                    if (!outer) continue;
+                    const Vec2 load = (sig / 2) * Vec2{b.y - a.y, a.x - b.x};
+                    f[t[k]] = f[t[k]] + load;
+                    f[t[(k + 1) % 3]] = f[t[(k + 1) % 3]] + load;
+                }
+            }
+            double worst = 0;
+            for (const Vec2& r : f)
+                worst = std::max(worst, norm(r));
+            const double scale = std::abs(sig) * kH;  // the force of one edge
+            EXPECT_LE(worst, 1e-10 * scale) << "alternate " << alternate << ", sigma " << sig;
+            EXPECT_EQ(pass.newly_broken, 0);
+            EXPECT_EQ(pass.softening, 0);
+            std::printf(
+                "[ U4 ] alternate %d, sigma/f_t = %+.2f: max residual / (|sigma| h) = %.2e\n",
+                alternate, sig / kFt, worst / scale);
+        }
+    }
 }
 
 }  // namespace
