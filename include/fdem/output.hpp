@@ -74,7 +74,8 @@ class HistoryWriter {
 public:
     /// Creates (truncates) path and writes the header. Throws SimulationError if it cannot.
     /// fracture: the model has cohesive joints; the header gets the columns energy.joint,
-    /// energy.fracture, joints.softening, joints.broken, crack_length, fragments (write() fills
+    /// energy.fracture, joints.softening, joints.broken, crack_length, fragments,
+    /// largest_fragment_mass_fraction (write() fills
     /// them when the Model has joints: construct with fracture = !m.joints.nodes.empty()).
     explicit HistoryWriter(const std::string& path, bool fracture = false);
     /// Restart: keeps the header and the rows of an existing file with step <= resume_step
@@ -85,13 +86,18 @@ public:
     ~HistoryWriter();
     HistoryWriter(const HistoryWriter&) = delete;
     HistoryWriter& operator=(const HistoryWriter&) = delete;
+    /// Sizes the scratch of the fracture columns for m (no allocation in write() afterwards;
+    /// write() sizes it itself at its first call otherwise).
+    void prepare(const Model& m);
     void write(const Model& m, const State& s);
 
 private:
     std::string path_;
     std::FILE* file_ = nullptr;
     bool has_reference_ = false;
-    Real total0_ = 0;  ///< total energy of the first row [J/m]
+    Real total0_ = 0;               ///< total energy of the first row [J/m]
+    std::vector<TriId> node_frag_;  ///< scratch of largest_fragment_mass_fraction (per node)
+    std::vector<Real> frag_mass_;   ///< scratch of largest_fragment_mass_fraction (per fragment)
 };
 
 /// A CSV time series (bodies.csv, probes.csv): one header line, then one row per call, each

@@ -209,4 +209,36 @@ void update_fragments(const Model& m, std::span<const JointStatus> status,
         body_fragments(m, status, b, first, tri_fragment);
 }
 
+Real largest_fragment_mass_fraction(const Model& m, std::span<const TriId> tri_fragment,
+                                    std::span<TriId> node_fragment, std::span<Real> fragment_mass) {
+    FDEM_ASSERT(tri_fragment.size() == static_cast<size_t>(m.num_tris()) &&
+                    node_fragment.size() == static_cast<size_t>(m.num_nodes()) &&
+                    fragment_mass.size() == static_cast<size_t>(m.num_tris()),
+                "largest_fragment_mass_fraction: array sizes");
+    Real total = 0, largest = 0;
+    for (const Body& body : m.bodies) {
+        if (!body.fracture) continue;
+        for (NodeId n = body.node_begin; n < body.node_end; ++n)
+            node_fragment[static_cast<size_t>(n)] = kNone;
+        // a fragment's id is its smallest triangle, met first: its sum starts there
+        for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
+            const TriId f = tri_fragment[static_cast<size_t>(t)];
+            if (f == t) fragment_mass[static_cast<size_t>(f)] = 0;
+            for (const NodeId n : m.tri_nodes[static_cast<size_t>(t)])
+                node_fragment[static_cast<size_t>(n)] = f;
+        }
+        for (NodeId n = body.node_begin; n < body.node_end; ++n) {
+            const TriId f = node_fragment[static_cast<size_t>(n)];
+            if (f == kNone) continue;
+            fragment_mass[static_cast<size_t>(f)] += m.node_mass[static_cast<size_t>(n)];
+            total += m.node_mass[static_cast<size_t>(n)];
+        }
+        for (TriId t = body.tri_begin; t < body.tri_end; ++t) {
+            if (tri_fragment[static_cast<size_t>(t)] == t)
+                largest = std::max(largest, fragment_mass[static_cast<size_t>(t)]);
+        }
+    }
+    return total > 0 ? largest / total : 0;
+}
+
 }  // namespace fdem

@@ -38,4 +38,13 @@ void compute_fragments(const Model& m, std::span<const JointStatus> status,
 void update_fragments(const Model& m, std::span<const JointStatus> status,
                       std::span<const int32_t> broken, std::vector<TriId>& tri_fragment);
 
+/// Mass of the largest fragment of the bodies with fracture over the mass of those bodies (the
+/// history.csv column largest_fragment_mass_fraction, docs/output.md): fragment masses are sums
+/// of the lumped node masses m.node_mass of the fragment's nodes (a node lies in the fragment of
+/// its triangles, tri_fragment). 0 when no body has fracture or their mass is 0. Scratch, sized
+/// by the caller and overwritten: node_fragment (num_nodes), fragment_mass (num_tris). No
+/// allocation; two passes over the fracture bodies' triangles and nodes.
+Real largest_fragment_mass_fraction(const Model& m, std::span<const TriId> tri_fragment,
+                                    std::span<TriId> node_fragment, std::span<Real> fragment_mass);
+
 }  // namespace fdem

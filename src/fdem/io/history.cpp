@@ -7,6 +7,7 @@
 
 #include "fdem/error.hpp"
 #include "fdem/output.hpp"
+#include "fracture/sectors.hpp"
 #include "io/atomic_file.hpp"
 
 namespace fdem {
@@ -18,7 +19,8 @@ constexpr const char* kHeader =
     "dissipated_contact,total,energy_error,active_contacts\n";
 /// Appended when the model has cohesive joints (spec fracture.md §9 output; docs/output.md).
 constexpr const char* kFractureColumns =
-    ",energy.joint,energy.fracture,joints.softening,joints.broken,crack_length,fragments";
+    ",energy.joint,energy.fracture,joints.softening,joints.broken,crack_length,fragments,"
+    "largest_fragment_mass_fraction";
 
 std::string header(bool fracture) {
     std::string h = kHeader;
@@ -94,6 +96,12 @@ HistoryWriter::~HistoryWriter() {
     if (file_ != nullptr) std::fclose(file_);
 }
 
+void HistoryWriter::prepare(const Model& m) {
+    if (m.joints.nodes.empty()) return;
+    node_frag_.assign(static_cast<size_t>(m.num_nodes()), kNone);
+    frag_mass_.assign(static_cast<size_t>(m.num_tris()), 0);
+}
+
 void HistoryWriter::write(const Model& m, const State& s) {
     const Energy& e = s.energy;
     const Real total = e.total();
@@ -124,9 +132,18 @@ void HistoryWriter::write(const Model& m, const State& s) {
         int64_t fragments = 0;
         for (size_t t = 0; t < s.tri_fragment.size(); ++t)
             fragments += s.tri_fragment[t] == static_cast<TriId>(t) ? 1 : 0;
-        nf = std::fprintf(file_, ",%.17g,%.17g,%lld,%lld,%.17g,%lld", e.joint, e.fracture,
+        // largest fragment of the fracture bodies over their mass (computed here, at output
+        // times, not in the step; scratch sized by prepare())
+        Real largest = 0;
+        if (s.tri_fragment.size() == static_cast<size_t>(m.num_tris())) {
+            if (node_frag_.size() != static_cast<size_t>(m.num_nodes()) ||
+                frag_mass_.size() != static_cast<size_t>(m.num_tris()))
+                prepare(m);
+            largest = largest_fragment_mass_fraction(m, s.tri_fragment, node_frag_, frag_mass_);
+        }
+        nf = std::fprintf(file_, ",%.17g,%.17g,%lld,%lld,%.17g,%lld,%.17g", e.joint, e.fracture,
                           static_cast<long long>(softening), static_cast<long long>(broken), crack,
-                          static_cast<long long>(fragments));
+                          static_cast<long long>(fragments), largest);
     }
     if (n < 0 || nf < 0 || std::fputc('\n', file_) == EOF || std::fflush(file_) != 0) {
         throw SimulationError(s.step, s.time, path_,

@@ -77,6 +77,7 @@ struct Simulation::Impl {
                                                         !model.joints.nodes.empty())
                       : std::make_unique<HistoryWriter>((out / "history.csv").string(),
                                                         !model.joints.nodes.empty());
+        history->prepare(model);  // the fracture columns' scratch, before the step loop
         // bodies.csv: resultants, reactions and mean motion per body entry and boundary group
         const int64_t resume = restarted ? state.step : -1;
         if (run.output.bodies) {

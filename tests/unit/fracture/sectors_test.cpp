@@ -194,6 +194,36 @@ TEST(Fragments, OneTriangleCutFree) {
         EXPECT_EQ(frag[t], t == lone ? lone : 0) << t;
 }
 
+// largest_fragment_mass_fraction: the 16 m^2 block (density 1000, lumped masses rho A/3 per
+// node) is one fragment (1), two halves of 8 m^2 after the crack line (1/2), and after one
+// triangle of 0.5 m^2 is cut free the rest holds 15.5/16 = 0.96875 (round-off of the lumped
+// thirds only)
+TEST(Fragments, LargestFragmentMassFraction) {
+    const Model m = jointed_block();
+    std::vector<TriId> frag;
+    std::vector<TriId> node_frag(static_cast<size_t>(m.num_nodes()));
+    std::vector<Real> frag_mass(static_cast<size_t>(m.num_tris()));
+    compute_fragments(m, statuses(m), frag);
+    EXPECT_NEAR(largest_fragment_mass_fraction(m, frag, node_frag, frag_mass), 1.0, 1e-14);
+    compute_fragments(m, statuses(m, joints_on_line(m, 2.0)), frag);
+    EXPECT_NEAR(largest_fragment_mass_fraction(m, frag, node_frag, frag_mass), 0.5, 1e-14);
+    const auto& n = m.tri_nodes[13];
+    std::vector<int32_t> around;
+    for (int32_t j = 0; j < m.joints.num_joints(); ++j) {
+        for (NodeId k : m.joints.nodes[j]) {
+            if (k == n[0] || k == n[1] || k == n[2]) {
+                around.push_back(j);
+                break;
+            }
+        }
+    }
+    compute_fragments(m, statuses(m, around), frag);
+    EXPECT_NEAR(largest_fragment_mass_fraction(m, frag, node_frag, frag_mass), 0.96875, 1e-14);
+    // scratch left from another state does not leak into the next call
+    compute_fragments(m, statuses(m, joints_on_line(m, 2.0)), frag);
+    EXPECT_NEAR(largest_fragment_mass_fraction(m, frag, node_frag, frag_mass), 0.5, 1e-14);
+}
+
 // ids do not depend on the order of the breaks; the incremental form equals the full form
 TEST(Fragments, IndependentOfBreakOrder) {
     const Model m = jointed_block();

@@ -141,9 +141,13 @@ TEST(HistoryWriter, UnwritablePathIsASimulationError) {
 namespace fdem {
 namespace {
 
-// A model with joints: six more columns after the pinned ones, with the joint energy, W_frac,
-// softening and broken counts, the crack length (sum of h_0 of broken joints) and the number of
-// fragments (triangles that label their own fragment).
+// A model with joints: seven more columns after the pinned ones, with the joint energy, W_frac,
+// softening and broken counts, the crack length (sum of h_0 of broken joints), the number of
+// fragments (triangles that label their own fragment) and the largest fragment's share of the
+// fracture bodies' mass. Body 0 (fracture): triangles 0 and 1 share nodes 1, 2 (fragment 0,
+// nodes 0-3, mass 1 + 2 + 3 + 4 = 10), triangle 2 alone (nodes 4-6, 3 x 0.5 = 1.5), triangles 3
+// and 4 joined by a joint (fragment 3, nodes 7-12, 6 x 1 = 6); body 1 (no fracture, mass 3000)
+// is a fragment too but not in the fraction: 10 / 17.5 = 4/7.
 TEST(History, FractureColumns) {
     const fs::path dir = fs::path(::testing::TempDir()) / "fdem_history_fracture";
     fs::remove_all(dir);
@@ -152,29 +156,45 @@ TEST(History, FractureColumns) {
     Model m;
     m.joints.nodes = {{0, 1, 2, 3}, {0, 1, 2, 3}, {0, 1, 2, 3}};
     m.joints.length0 = {0.5, 0.25, 2.0};
+    m.node_x0.assign(16, Vec2{0, 0});
+    m.node_mass = {1, 2, 3, 4, 0.5, 0.5, 0.5, 1, 1, 1, 1, 1, 1, 1000, 1000, 1000};
+    m.tri_nodes = {{0, 1, 2}, {1, 3, 2}, {4, 5, 6}, {7, 8, 9}, {10, 11, 12}, {13, 14, 15}};
+    Body b0;
+    b0.fracture = true;
+    b0.node_end = 13;
+    b0.tri_end = 5;
+    Body b1;
+    b1.node_begin = 13;
+    b1.node_end = 16;
+    b1.tri_begin = 5;
+    b1.tri_end = 6;
+    m.bodies = {b0, b1};
     State s;
     s.energy.joint = 0.125;
     s.energy.fracture = 3.5;
     s.joints.status = {JointStatus::Broken, JointStatus::Softening, JointStatus::Broken};
-    s.tri_fragment = {0, 0, 2, 3, 3};
+    s.tri_fragment = {0, 0, 2, 3, 3, 5};
     {
         HistoryWriter w(p.string(), true);
+        w.prepare(m);
         w.write(m, s);
     }
     const std::vector<std::string> lines = read_lines(p);
     ASSERT_EQ(lines.size(), 2u);
     const std::vector<std::string> head = split(lines[0]);
     const std::vector<std::string> row = split(lines[1]);
-    ASSERT_EQ(head.size(), 18u);
-    ASSERT_EQ(row.size(), 18u);
+    ASSERT_EQ(head.size(), 19u);
+    ASSERT_EQ(row.size(), 19u);
     EXPECT_EQ(head[11], "active_contacts");
     const std::vector<std::string> cols = {"energy.joint",  "energy.fracture", "joints.softening",
                                            "joints.broken", "crack_length",    "fragments"};
-    const std::vector<std::string> vals = {"0.125", "3.5", "1", "2", "2.5", "3"};
+    const std::vector<std::string> vals = {"0.125", "3.5", "1", "2", "2.5", "4"};
     for (size_t k = 0; k < 6; ++k) {
         EXPECT_EQ(head[12 + k], cols[k]);
         EXPECT_EQ(row[12 + k], vals[k]) << cols[k];
     }
+    EXPECT_EQ(head[18], "largest_fragment_mass_fraction");
+    EXPECT_EQ(std::stod(row[18]), 4.0 / 7.0);  // %.17g reads back exact; 10/17.5 rounds as 4/7
 }
 
 }  // namespace
