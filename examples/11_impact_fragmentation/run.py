@@ -47,7 +47,7 @@ ENERGY_TOL = 0.01  # spec V8: energy balance <= 1 % of KE0
 SIZES = {  # mode: (mesh size [m], velocities [m/s], seeds, simulated time after contact [s])
     "default": (5.0e-3, [5.0, 10.0, 20.0, 40.0], [1], 6.0e-4),
     "full": (2.5e-3, [5.0, 10.0, 20.0, 40.0], [1, 2, 3], 6.0e-4),
-    "quick": (5.0e-3, [10.0, 40.0], [1], 3.0e-4),
+    "quick": (5.0e-3, [10.0, 40.0], [1], 2.0e-4),
 }
 
 
