@@ -161,11 +161,11 @@ struct Simulation::Impl {
         }
         if (probes) probes->write(model, state);
         if (run.output.vtu) {
-            const std::string name = fmt::format("frame_{:06d}.vtu", prog.frame);
-            write_vtu((out / name).string(), model, state);
-            series->add(state.time, name);
-            prog.frames.emplace_back(state.time, name);
-            last_frame = {(out / name).string(), state.step, state.time};
+            const std::string frame = fmt::format("frame_{:06d}.vtu", prog.frame);
+            write_vtu((out / frame).string(), model, state);
+            series->add(state.time, frame);
+            prog.frames.emplace_back(state.time, frame);
+            last_frame = {(out / frame).string(), state.step, state.time};
         }
         if (fracture) fracture->write_output(model, state, prog.frame, last);
         ++prog.frame;
@@ -212,17 +212,17 @@ struct Simulation::Impl {
         const bool last = s.step == total;
         const bool output_due = out && (s.time >= prog.next_output - 0.5 * s.dt || last);
         const bool checkpoint_due = ck && (s.time >= next_checkpoint - 0.5 * s.dt || last);
-        const bool stop = this->stop.load(std::memory_order_relaxed) != 0;
+        const bool stop_asked = stop.load(std::memory_order_relaxed) != 0;
         // NaN/Inf check every 16 steps and before anything is written: files hold good states
-        if (s.step % 16 == 0 || output_due || checkpoint_due || stop) check_state(m, s);
+        if (s.step % 16 == 0 || output_due || checkpoint_due || stop_asked) check_state(m, s);
         if (output_due) write_output(last);
         if (checkpoint_due) {
             write_checkpoint_file(checkpoint_path());
             while (next_checkpoint <= s.time + 0.5 * s.dt)
                 next_checkpoint += checkpoint_every;
         }
-        if (stop && out && !checkpoint_due) write_checkpoint_file(checkpoint_path());
-        return stop;
+        if (stop_asked && out && !checkpoint_due) write_checkpoint_file(checkpoint_path());
+        return stop_asked;
     }
 
     void write_failure() {

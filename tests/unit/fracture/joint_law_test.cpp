@@ -55,8 +55,8 @@ TEST(JointLaw, EvansMaratheShape) {
     double gl = 0;
     const int np = 1000;
     for (int k = 0; k < np; ++k)
-        for (int q = 0; q < 5; ++q)
-            gl += 0.5 / np * gw[q] * softening_z(em, (k + 0.5 + 0.5 * gx[q]) / np);
+        for (int g = 0; g < 5; ++g)
+            gl += 0.5 / np * gw[g] * softening_z(em, (k + 0.5 + 0.5 * gx[g]) / np);
     EXPECT_NEAR(Iz, gl, 1e-13);
     // spec §3.7: the "3G/f" rule dissipates 3 I_z G = 1.159 G in softening
     EXPECT_NEAR(3.0 * Iz, 1.159, 5e-4);

@@ -109,7 +109,9 @@ TEST(Sectors, PartialCrackTipStaysOneSector) {
     compute_node_sectors(m, statuses(m, crack), sec);
     for (NodeId n = 0; n < m.num_nodes(); ++n) {
         const Vec2 p = m.node_x0[n];
-        if (p == Vec2{2, 2} || p.y != 2.0 || p.x > 2.0) EXPECT_EQ(sec[n], m.node_vertex[n]) << n;
+        if (p == Vec2{2, 2} || p.y != 2.0 || p.x > 2.0) {
+            EXPECT_EQ(sec[n], m.node_vertex[n]) << n;
+        }
     }
     // (0, 2) and (1, 2): two sectors each
     for (const Vec2 p : {Vec2{0, 2}, Vec2{1, 2}}) {

@@ -153,8 +153,9 @@ TEST(FractureBuild, RegionOnly) {
     }
     // vertices right of the region are not split
     for (NodeId n = 0; n < m.num_nodes(); ++n) {
-        if (m.node_x0[static_cast<size_t>(n)].x > 0.45)
+        if (m.node_x0[static_cast<size_t>(n)].x > 0.45) {
             EXPECT_EQ(m.node_vertex[static_cast<size_t>(n)], n);
+        }
     }
 }
 
