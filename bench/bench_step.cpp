@@ -43,6 +43,59 @@ BENCHMARK(BM_Step)
         bench::tri_sizes(b, 2);
     }) -> Unit(benchmark::kMicrosecond);
 
+// The whole step of an intact jointed continuum (issue #14 "Performance"): BM_Step's block with
+// gravity and a clamped base, every internal edge an intact cohesive joint (every triangle its
+// own three nodes, 1.5 joints per triangle; scenes::BlockOptions::jointed), so the step runs the
+// element pass, the joint pass (theory §9) and the contact of the one fragment's boundary. dt =
+// 0.9 x stable (joint bound included, theory eq. 9.21). items/s = triangle-steps/s; joints/s =
+// joint-steps/s (the reference code counts triangles and joints together). Args: {triangles,
+// threads, energy every step}. Skips with an error if a joint softens (the load is elastic).
+const Model& cached_jointed_block(int64_t num_tris) {
+    static std::map<int64_t, std::unique_ptr<Model>> cache;
+    auto& slot = cache[num_tris];
+    if (!slot) {
+        if (num_tris >= (1 << 20)) cache.clear();
+        scenes::BlockOptions o;
+        o.num_tris = num_tris;
+        o.gravity = o.clamp = o.jointed = true;
+        auto& fresh = cache[num_tris];
+        fresh = std::make_unique<Model>(scenes::make_block(o));
+        return *fresh;
+    }
+    return *slot;
+}
+
+void BM_StepJointed(benchmark::State& st) {
+    omp_set_num_threads(static_cast<int>(st.range(1)));
+    const Model& m = cached_jointed_block(st.range(0));
+    State s = make_state(m, 0.9 * stable_time_step(m));
+    step(m, s);
+    s.need_energy = st.range(2) != 0;
+    for (auto _ : st)
+        step(m, s);
+    int64_t not_intact = 0;
+    for (const JointStatus js : s.joints.status)
+        not_intact += js != JointStatus::Intact;
+    if (not_intact != 0) st.SkipWithError("joints left the elastic range");
+    st.SetItemsProcessed(st.iterations() * m.num_tris());
+    const double joints = static_cast<double>(m.joints.num_joints());
+    st.counters["joints"] = joints;
+    st.counters["joints_per_s"] = benchmark::Counter(static_cast<double>(st.iterations()) * joints,
+                                                     benchmark::Counter::kIsRate);
+    st.counters["tris_and_joints_per_s"] =
+        benchmark::Counter(static_cast<double>(st.iterations()) * (joints + m.num_tris()),
+                           benchmark::Counter::kIsRate);
+    st.counters["omp_threads"] = static_cast<double>(st.range(1));
+    st.counters["energy"] = static_cast<double>(st.range(2));
+    st.counters["dt"] = s.dt;
+    st.counters["steps"] = static_cast<double>(s.step);
+    st.counters["hash32"] = static_cast<double>(scenes::state_hash(s) & 0xffffffffu);
+}
+
+BENCHMARK(BM_StepJointed)
+    ->ArgsProduct({{1 << 14, 1 << 17, 1 << 20}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
 // BM_Step with State::need_energy = false: no strain energy (one std::log per triangle), as the
 // CLI runs between output steps. The hash must equal BM_Step's for the same number of steps.
 void BM_StepNoEnergy(benchmark::State& st) {

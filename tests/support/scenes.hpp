@@ -104,6 +104,10 @@ struct BlockOptions {
     bool clamp = false;          ///< bottom edge held by a zero-velocity support
     bool shuffled = false;       ///< random node and triangle numbering (see shuffle_mesh)
     Real viscosity = 0;          ///< material viscosity eta [Pa s]
+    /// every internal edge an intact cohesive joint (every triangle its own three nodes, spec
+    /// fracture.md §1.2) with strengths far above the block's stresses (~1e5 Pa): f_t = 1 MPa,
+    /// c = 2 MPa, p = p_s = 10 E, so no joint softens
+    bool jointed = false;
 };
 
 /// A 1 m x 1 m elastic block (paper material, nu = 0.25) vibrating in its first modes: initial
@@ -114,6 +118,15 @@ inline Model make_block(const BlockOptions& o) {
     Model m;
     Material mat = paper_material("block", 1e9, 0.25, 1000.0);
     mat.viscosity = o.viscosity;
+    if (o.jointed) {
+        mat.has_fracture = true;
+        mat.fracture.tensile_strength = 1e6;
+        mat.fracture.cohesion = 2e6;
+        mat.fracture.friction_angle = 0.5;
+        mat.fracture.fracture_energy_I = 100;
+        mat.fracture.fracture_energy_II = 200;
+        mat.fracture.penalty = mat.fracture.shear_penalty = 10 * mat.youngs_modulus;
+    }
     m.materials.push_back(mat);
     if (o.gravity) m.gravity = {0, -9.81};
     MeshData mesh = make_rectangle_mesh(0, 0, 1, 1, n, n, true);
@@ -122,6 +135,7 @@ inline Model make_block(const BlockOptions& o) {
     std::iota(all.begin(), all.end(), 0);
     BodyOptions opt;
     opt.name = "block";
+    opt.fracture = o.jointed;
     add_bodies(m, mesh, all, opt);
     const Real pi = std::acos(-1.0);
     for (NodeId i = 0; i < m.num_nodes(); ++i) {
