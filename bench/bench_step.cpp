@@ -4,13 +4,17 @@
 // hash (a speed-up that changes it must say so, style guide §4.9). Args: {triangles, threads}.
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <map>
 #include <memory>
+#include <numeric>
+#include <random>
 
 #include "bench_common.hpp"
 #include "bench_phases.hpp"
 #include "fdem/measure.hpp"
 #include "fdem/simulate.hpp"
+#include "integrate/fracture_update.hpp"
 #include "support/hash.hpp"
 
 namespace fdem {
@@ -94,6 +98,69 @@ void BM_StepJointed(benchmark::State& st) {
 
 BENCHMARK(BM_StepJointed)
     ->ArgsProduct({{1 << 14, 1 << 17, 1 << 20}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
+// The cost of breaks (issue #14 "fragment splitting cost per break"; spec fracture.md §7 step 3c):
+// BM_StepJointed's block; every iteration breaks the next `breaks` joints of a seeded random
+// order (status Broken, break_step = this step, as the kernel marks them), then runs
+// process_breaks (sectors, fragments, rebuild_contact_topology of the body, topology_changed)
+// and the next step(), whose broad phase runs again. 20 iterations (<= 5 % of the joints broken,
+// so the block stays one piece held by its other joints). Counters (this thread's CPU time, one
+// thread): us_process_breaks per call, us_step_after (the step after, with its detection),
+// us_per_break = (process_breaks + step after - a plain step) / breaks; the plain step is
+// timed on the same state before the first break. Args: {triangles, breaks per step}.
+void BM_StepJointedBreaks(benchmark::State& st) {
+    omp_set_num_threads(1);
+    const Model& m = cached_jointed_block(st.range(0));
+    const int breaks = static_cast<int>(st.range(1));
+    State s = make_state(m, 0.9 * stable_time_step(m));
+    s.need_energy = false;
+    // this thread's CPU time (the machine is shared: wall time includes other processes' slices)
+    const auto now = [] {
+        timespec ts{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+        return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+    };
+    for (int k = 0; k < 5; ++k)
+        step(m, s);
+    double t0 = now();
+    constexpr int kPlain = 20;
+    for (int k = 0; k < kPlain; ++k)
+        step(m, s);
+    const double plain = (now() - t0) / kPlain;
+    std::vector<int32_t> order(static_cast<size_t>(m.joints.num_joints()));
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), std::mt19937_64(7));
+    size_t next = 0;
+    double t_breaks = 0, t_after = 0;
+    for (auto _ : st) {
+        for (int k = 0; k < breaks; ++k) {
+            const auto j = static_cast<size_t>(order[next++]);
+            s.joints.status[j] = JointStatus::Broken;
+            s.joints.mode[j] = JointMode::I;
+            s.joints.break_step[j] = s.step;
+        }
+        t0 = now();
+        process_breaks(m, s);
+        const double t1 = now();
+        step(m, s);
+        t_breaks += t1 - t0;
+        t_after += now() - t1;
+    }
+    const double n = static_cast<double>(st.iterations());
+    st.counters["us_plain_step"] = 1e6 * plain;
+    st.counters["us_process_breaks"] = 1e6 * t_breaks / n;
+    st.counters["us_step_after"] = 1e6 * t_after / n;
+    st.counters["us_per_break"] = 1e6 * ((t_breaks + t_after) / n - plain) / breaks;
+    st.counters["joints"] = static_cast<double>(m.joints.num_joints());
+    st.counters["fragments_end"] =
+        static_cast<double>(std::count_if(s.tri_fragment.begin(), s.tri_fragment.end(),
+                                          [&, t = TriId{0}](TriId f) mutable { return f == t++; }));
+}
+
+BENCHMARK(BM_StepJointedBreaks)
+    ->ArgsProduct({{1 << 12, 1 << 14, 1 << 16}, {1, 64}})
+    ->Iterations(20)
     ->Unit(benchmark::kMicrosecond);
 
 // BM_Step with State::need_energy = false: no strain energy (one std::log per triangle), as the

@@ -157,8 +157,14 @@ void body_fragments(const Model& m, std::span<const JointStatus> status, BodyId 
     }
     const Joints& J = m.joints;
     if (!J.nodes.empty()) {
-        for (NodeId n = n0; n < body.node_end; ++n) {
-            for (const int32_t e : node_entries(J, n)) {
+        // the body's nodes with joints are one run of the ascending gather_node: walk it (the
+        // same nodes and entries in the same order as node_entries per node, without a binary
+        // search per node, which was most of the cost of a break in a large body)
+        const auto begin = std::lower_bound(J.gather_node.begin(), J.gather_node.end(), n0);
+        for (auto g = static_cast<size_t>(begin - J.gather_node.begin());
+             g < J.gather_node.size() && J.gather_node[g] < body.node_end; ++g) {
+            for (int32_t q = J.gather_begin[g]; q < J.gather_begin[g + 1]; ++q) {
+                const int32_t e = J.gather_entry[static_cast<size_t>(q)];
                 if (e % 4 != 0 || !intact(status, e / 4)) continue;  // once per joint, at node 0
                 const auto& jn = J.nodes[static_cast<size_t>(e / 4)];
                 uf.unite(first[static_cast<size_t>(jn[0] - n0)],
