@@ -107,6 +107,9 @@ def disc_reference(frame, rho):
 def evaluate(d, rho, v):
     """Numbers of one finished run in folder d."""
     frames = labtest.frames(d)
+    if not frames or not os.path.exists(os.path.join(d, "fragments.csv")):
+        sys.exit(f"error: {d} holds no finished run (no frames or fragments.csv); run without "
+                 "--no-run")
     ntri, mass_ref, _ = disc_reference(frames[0][1], rho)
     # the disc's triangles come first (first [[body]]), so its fragments are those with an id
     # (= smallest triangle id) below ntri; the plate is the fragment with id ntri
