@@ -6,7 +6,7 @@ Usage (from the repository root, after building):
     /usr/bin/python3 examples/11_impact_fragmentation/run.py --full    # spec V8: mesh 5 mm, 5/10/20/40 m/s, seeds 1-3
     /usr/bin/python3 examples/11_impact_fragmentation/run.py --fine    # as --full with mesh 2.5 mm (~8x the cost)
     /usr/bin/python3 examples/11_impact_fragmentation/run.py --quick   # CTest `validation`: mesh 5 mm, 10/40 m/s, seed 1
-Options: --velocities 5,40 and --seeds 1,2 override the sets, --after T (simulated time after the
+Options: --ring (also the expanding ring), --velocities 5,40 and --seeds 1,2 override the sets, --after T (simulated time after the
 contact starts, s), --out DIR (default out/11_impact_fragmentation[_full|_fine|_quick]), --fdem PATH
 (default build/release/fdem), --threads N (default 1), --check (exit 1 when a spec V8 target is
 missed), --no-run (post-process existing runs), --validate DIR (write DIR/checks_impact.csv).
@@ -21,6 +21,7 @@ A disc D = 0.1 m of rock, every internal edge a cohesive joint, falls at v onto 
                      energy error / KE0, mass error, broken joints, fracture work, run time
   OUT/summary.png    fragment count and largest fraction against v
   OUT/fragments.png  the fragments at the end (seed 1 of every velocity), coloured by fragment
+  OUT/ring/          with --ring, --full, --fine: the expanding ring of ring.toml (Grady)
 and prints the numbers. Targets (spec fracture.md §11 V8): sum of the fragment masses = the disc's
 mass (rho x its mesh area, from the triangles of the first frame) to 1e-12 relative at every
 output time; energy balance within 1 % of KE0; seed-mean fragment count non-decreasing and
@@ -91,11 +92,11 @@ def read_fragments(path):
     return blocks
 
 
-def disc_reference(frame, rho):
+def disc_reference(frame, rho, body_name="disc"):
     """Number of disc triangles and the disc's mass rho x sum of its triangle areas, from the
     reference positions X = x - u of a frame (shoelace formula; independent of fdem's masses)."""
     x, u, conn, body, names = labtest.read_frame(frame)
-    ids = [i for i, n in enumerate(names) if n == "disc"]
+    ids = [i for i, n in enumerate(names) if n == body_name]
     tris = conn[np.isin(body, ids)]
     X = x - u
     a, b, c = X[tris[:, 0]], X[tris[:, 1]], X[tris[:, 2]]
@@ -139,6 +140,53 @@ def evaluate(d, rho, v):
             "w_frac": hist[-1].get("energy.fracture", 0.0),
             "first_contact": contact[0] if contact else float("nan"), "fragments": frag,
             "history": hist, "final_frame": frames[-1][1]}
+
+
+RING_R, RING_RI, RING_RO = 0.1, 0.095, 0.105  # m: ring.geo (mean, inner, outer radius)
+
+
+def run_ring(out, fdem, threads, no_run):
+    """The expanding ring of ring.toml (optional part of spec V8): fragments at the end against
+    Grady's s = (24 G/(rho r^2))^(1/3) (Grady 1982, recalled), energy balance against the
+    initial kinetic energy of the exact annulus, KE0 = rho r^2 pi (Ro^4 - Ri^4)/4."""
+    d = os.path.join(out, "ring")
+    os.makedirs(d, exist_ok=True)
+    text = labtest.absolute_meshes(open(os.path.join(HERE, "ring.toml")).read(), HERE)
+    scen = os.path.join(d, "scenario_used.toml")
+    open(scen, "w").write(text)
+    cfg = tomllib.loads(text)
+    wall = float("nan")
+    if not no_run:
+        wall = labtest.run_fdem(fdem, scen, d, threads, "ring: ")
+    rock = next(m for m in cfg["material"] if m["name"] == "rock")
+    rho, G = rock["density"], rock["fracture"]["fracture_energy_I"]
+    rate = cfg["body"][0]["velocity_gradient"][0][0]
+    frames = labtest.frames(d)
+    if not frames or not os.path.exists(os.path.join(d, "fragments.csv")):
+        sys.exit(f"error: {d} holds no finished run; run without --no-run")
+    ntri, mass_ref, _ = disc_reference(frames[0][1], rho, "ring")
+    blocks = read_fragments(os.path.join(d, "fragments.csv"))
+    mass_err = max(abs(math.fsum(r["mass"] for r in rows) / mass_ref - 1.0)
+                   for rows in blocks.values())
+    frag = blocks[max(blocks)]
+    multi = [r for r in frag if r["triangles"] > 1]
+    total = math.fsum(r["mass"] for r in frag)
+    # fragment length along the ring: its area / thickness
+    arc = [r["area"] / (RING_RO - RING_RI) for r in frag]
+    hist = labtest.read_csv(os.path.join(d, "history.csv"))
+    ke0 = rho * rate**2 * math.pi * (RING_RO**4 - RING_RI**4) / 4.0
+    grady = (24.0 * G / (rho * rate**2)) ** (1.0 / 3.0)
+    return {"count": len(frag), "multi": len(multi), "grady": grady,
+            "grady_count": 2 * math.pi * RING_R / grady,
+            "mean": 2 * math.pi * RING_R / len(frag),
+            "mean_multi": 2 * math.pi * RING_R / len(multi) if multi else float("nan"),
+            "mass_mean": math.fsum(a * r["mass"] for a, r in zip(arc, frag)) / total,
+            "largest": max(arc), "single_mass": math.fsum(r["mass"] for r in frag
+                                                          if r["triangles"] == 1) / total,
+            "energy_err": max(abs(h["energy_error"]) for h in hist) / ke0, "ke0": ke0,
+            "ke0_fdem": hist[0]["kinetic"], "mass_err": mass_err, "ntri": ntri, "rate": rate,
+            "broken": hist[-1].get("joints.broken", 0), "w_frac": hist[-1].get("energy.fracture", 0),
+            "wall": wall}
 
 
 def plot_sizes(png, runs, velocities, seeds):
@@ -243,6 +291,8 @@ def main():
     ap.add_argument("--full", action="store_true")
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--fine", action="store_true")
+    ap.add_argument("--ring", action="store_true",
+                    help="also run the expanding ring (ring.toml, Grady); --full and --fine do")
     ap.add_argument("--velocities")
     ap.add_argument("--seeds")
     ap.add_argument("--after", type=float)
@@ -339,6 +389,21 @@ def main():
             print(f"  v = {v:4g} m/s seed mean: {m['count']:.1f} fragments, largest "
                   f"{m['largest']:.4f}, single triangles {m['single_count'] * 100:.1f} %, "
                   f"energy error {m['energy_err'] * 100:.3g} % of KE0")
+    ring = None
+    if a.ring or mode in ("full", "fine"):
+        ring = run_ring(out, a.fdem, a.threads, a.no_run)
+        print(f"  expanding ring (ring.toml, r = {ring['rate']:g} 1/s, {ring['ntri']} triangles): "
+              f"{ring['count']} fragments ({ring['multi']} of more than one triangle, single "
+              f"triangles {ring['single_mass'] * 100:.1f} % of the mass), mean length 2 pi R / N = "
+              f"{ring['mean'] * 1e3:.2f} mm (multi-triangle fragments only "
+              f"{ring['mean_multi'] * 1e3:.2f} mm, mass-weighted {ring['mass_mean'] * 1e3:.2f} mm, "
+              f"largest {ring['largest'] * 1e3:.2f} mm) against Grady (24 G/(rho r^2))^(1/3) = "
+              f"{ring['grady'] * 1e3:.2f} mm ({ring['grady_count']:.0f} fragments): ratio "
+              f"{ring['mean'] / ring['grady']:.3f}; broken {ring['broken']:.0f}, W_frac "
+              f"{ring['w_frac']:.1f} J/m; energy error max {ring['energy_err'] * 100:.3g} % of KE0 = "
+              f"{ring['ke0']:.1f} J/m (fdem's first row {ring['ke0_fdem']:.1f}); mass error "
+              f"{ring['mass_err']:.2g}" + (f", run {ring['wall']:.1f} s"
+                                          if math.isfinite(ring["wall"]) else ""))
     counts = [mean[v]["count"] for v in velocities]
     largest = [mean[v]["largest"] for v in velocities]
     count_ok = all(b >= a_ for a_, b in zip(counts, counts[1:]))
@@ -382,6 +447,16 @@ def main():
             rows.append(labtest.check("V8", tag + f"v = {v:g} m/s: single-triangle fragments / "
                                       "fragments (seed mean, pulverisation)",
                                       mean[v]["single_count"], float("nan"), "report", 0, "", why))
+        if ring:
+            rtag = (f"expanding ring R = {RING_R * 1e3:g} mm, r = {ring['rate']:g} 1/s, h = 2.5 mm: ")
+            rows += [labtest.check("V8", rtag + "mean fragment length 2 pi R / N over Grady's "
+                                   "(24 G_I/(rho r^2))^(1/3)", ring["mean"] / ring["grady"], 1 / 3,
+                                   "range", 3, "", why + " (optional; Grady 1982, recalled): "
+                                   "within x3"),
+                     labtest.check("V8", rtag + "max |energy error| / KE0", ring["energy_err"],
+                                   ENERGY_TOL, "at_most", 0, "", why + "; undamped"),
+                     labtest.check("V8", rtag + "max |sum of fragment masses / (rho x ring area) "
+                                   "- 1|", ring["mass_err"], MASS_TOL, "at_most", 0, "", why)]
         failed = labtest.write_checks(
             a.validate, "impact", rows,
             [(os.path.join(out, "summary.png"), tag + "fragment count, largest fraction and "
