@@ -34,6 +34,11 @@ void* operator new(std::size_t n) {
 void* operator new[](std::size_t n) {
     return operator new(n);
 }
+// GCC 12 warns -Wmismatched-new-delete at the free() below when it inlines this operator delete
+// into a caller whose pointer came from operator new: a false positive for a replacement pair
+// that allocates with malloc and frees with free (both operators here)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void operator delete(void* p) noexcept {
     std::free(p);
 }
@@ -46,6 +51,7 @@ void operator delete(void* p, std::size_t) noexcept {
 void operator delete[](void* p, std::size_t) noexcept {
     std::free(p);
 }
+#pragma GCC diagnostic pop
 
 namespace fdem {
 namespace {
