@@ -11,6 +11,7 @@ set(FDEM_EXAMPLES
   "07_pull_apart            2.0e-4"
   "08_brazilian_disc        2.0e-4"
   "09_ucs                   2.0e-4"
+  "10_three_point_bending   2.0e-4"
   "11_impact_fragmentation  5.0e-5"
 )
 foreach(entry ${FDEM_EXAMPLES})
@@ -49,3 +50,12 @@ add_test(NAME validation.impact_quick
            --out ${CMAKE_CURRENT_BINARY_DIR}/example_out/11_impact_quick
            --validate ${CMAKE_CURRENT_BINARY_DIR}/example_out/11_impact_quick/checks)
 set_tests_properties(validation.impact_quick PROPERTIES LABELS validation TIMEOUT 600)
+
+# Example 10 at D/l_ch = 5 to just past the peak (run.py --quick, ~15 s on one core): spec V6's
+# P_max/P_LEFM band, the crack on the ligament, quasi-static loading and the energy balance,
+# checked by run.py --check against formulas (the work of fracture needs the tail: scripts/validate).
+add_test(NAME validation.bending_quick
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/examples/10_three_point_bending/run.py
+           --quick --check --fdem $<TARGET_FILE:fdem_cli>
+           --out ${CMAKE_CURRENT_BINARY_DIR}/example_out/10_three_point_bending_quick)
+set_tests_properties(validation.bending_quick PROPERTIES LABELS validation TIMEOUT 600)
