@@ -44,7 +44,8 @@ D0 = 0.050  # m: depth of scenario.toml's beam (beam.geo)
 F_HALF = 2.66  # SENB K calibration f(a0/D = 0.5) for S/D = 4 (ASTM E399 / Srawley, spec V6)
 WOF_TOL = {"aligned": 0.05, "unaligned": 0.15}  # spec V6: work of fracture = G_I +- 5 % / 15 %
 PMAX_BAND = (0.6, 1.0)  # spec V6: P_max / P_LEFM
-TAIL_END = 0.05  # a run counts as having reached the tail when it ends below 5 % of P_max
+TAIL_DELTA = 10.0  # the work of fracture is checked when the run ends at delta >= 10 delta_peak
+# (README: at 4 delta_peak the A/delta^2 tail is not yet asymptotic and overshoots by ~10 %)
 
 
 def sub1(pattern, repl, text, what):
@@ -176,8 +177,11 @@ def main():
         # D/l_ch = 20 to just past the peak only (the tail would cost 8 x the default run), with
         # the fine band |x| <= D/8 instead of D/4 (half the triangles; the band is >= 2.5 l_ch
         # wide either way); spec V6's unstructured run at the cheapest size
-        runs_spec = [(5.0, True, a.band, a.end_factor), (10.0, True, a.band, a.end_factor),
-                     (20.0, True, 0.125, 0.35 * a.end_factor), (5.0, False, a.band, a.end_factor)]
+        # D/l_ch = 5 (aligned and unstructured) to delta ~ 13 delta_peak (end time x 3): the
+        # work-of-fracture checks
+        runs_spec = [(5.0, True, a.band, 3 * a.end_factor), (10.0, True, a.band, a.end_factor),
+                     (20.0, True, 0.125, 0.35 * a.end_factor), (5.0, False, a.band,
+                                                                3 * a.end_factor)]
     out = a.out or ("out/10_three_point_bending" + ("_full" if a.full else "") +
                     ("_quick" if a.quick else ""))
     os.makedirs(out, exist_ok=True)
@@ -296,12 +300,16 @@ def main():
         rows_v.append(labtest.check("V6", tag + "P_max / P_LEFM with E_eff = E/(1 + 2E/p) of eq. "
                                     "9.6 in K_Ic", ratio_p / math.sqrt(eff), 1.0, "report", 0, "",
                                     "theory eq. 9.6 (information: the joints' compliance)"))
-        tail_reached = r["load"][-1] <= TAIL_END * r["load"][i]
-        if tail_reached:
+        reach = r["delta"][-1] / r["delta"][i]
+        if r["load"][-1] <= 0.4 * r["load"][i]:  # past the steep drop: a tail to report
+            long_ = reach >= TAIL_DELTA
             rows_v.append(labtest.check("V6", tag + "work of fracture W/(B(D - a0)) / G_I (P-delta "
-                                        "area to the end of the run + A/delta^2 tail)",
-                                        wof_tail / r["GI"], 1.0, "rel", tol, "",
-                                        why + f": G_I ± {tol * 100:g} % (RILEM)"))
+                                        f"area to delta_end = {reach:.1f} delta_peak + A/delta^2 "
+                                        "tail)", wof_tail / r["GI"], 1.0, "rel" if long_ else
+                                        "report", tol, "",
+                                        why + f": G_I ± {tol * 100:g} % (RILEM)" +
+                                        ("" if long_ else f"; not checked: the run ends before "
+                                         f"{TAIL_DELTA:g} delta_peak, the tail fit overshoots")))
             rows_v.append(labtest.check("V6", tag + "work of fracture / Gamma of eq. 9.13 (what "
                                         "a broken joint dissipates)", wof_tail / r["gamma"], 1.0,
                                         "report", 0, "", "theory eq. 9.13"))
@@ -312,10 +320,14 @@ def main():
                                         "(history.csv energy.fracture) / (D - a0) / Gamma",
                                         wfrac / r["gamma"], 1.0, "report", 0, "",
                                         "theory eqs. 9.13, 9.19"))
-            ok &= abs(wof_tail / r["GI"] - 1) <= tol
+            if long_:
+                ok &= abs(wof_tail / r["GI"] - 1) <= tol
+            else:
+                print(f"  (run ends at delta = {reach:.1f} delta_peak < {TAIL_DELTA:g}: work of "
+                      "fracture reported, not checked)")
         else:
             print(f"  (run ends at P = {r['load'][-1] / r['load'][i] * 100:.0f} % of P_max, before "
-                  f"the tail (<= {TAIL_END * 100:g} %): no work-of-fracture check)")
+                  "the tail: no work of fracture)")
         rows_v.append(labtest.check("V6", tag + "share of the broken length within ±h of the "
                                     "ligament", cs["share"], 1.0 if r["aligned"] else 0.0,
                                     "report" if not r["aligned"] else "at_least", 0, "",
