@@ -121,6 +121,11 @@ struct ContactState {
     // ---- kinematics of the virtual nodes this step --------------------------------------
     std::vector<Vec2> xv;  ///< positions [m]
     std::vector<Vec2> vv;  ///< velocities v^{n-1/2} [m/s]
+    /// welded topology only (ContactTopology::welded()), per real node: the contactor position
+    /// this step (eq. 6.23: the sector mean of a grouped copy, x itself of the other referenced
+    /// nodes; entries the contactor geometry does not reference are meaningless). Sized once by
+    /// init_contact_state(); empty without a weld. Scratch, not saved in checkpoints.
+    std::vector<Vec2> xw;
 
     // ---- baseline A (ContactAlgorithm::LegacyTriangle): couples and their history -------
     LegacyTriangleState legacy;

@@ -70,6 +70,22 @@ struct ContactTopology {
     /// fracture). Boundary classification, chords and nodal distances of a fracture body are
     /// computed on these ids; boundary edges and sub-triangles keep each triangle's own copies.
     std::vector<NodeId> node_weld;
+    /// Welded contactor positions (docs/theory.md §6.15, eq. 6.23): a sub-triangle vertex that is
+    /// a copy c of a sector S with more than one copy stands at the sector's mass-weighted mean
+    /// xbar_S = sum_{k in S} (m_k / M_S) x_k, so that the triangles around an intact vertex share
+    /// it exactly; its reaction goes to the copies with the same shares. Per real node: the index
+    /// of its sector's group, -1 = the node stands for itself. Empty without a weld (then every
+    /// contactor position is x itself). Group g's copies (ascending) and shares are
+    /// weld_copy / weld_share [weld_group_begin[g], weld_group_begin[g+1]). Only sectors some
+    /// copy of which is a vertex of a sub-triangle or a parent of a virtual node are grouped.
+    std::vector<int32_t> weld_group;
+    std::vector<int32_t> weld_group_begin;
+    std::vector<NodeId> weld_copy;
+    std::vector<Real> weld_share;
+    /// real nodes referenced by the contactor geometry (sub-triangle vertices, virtual parents)
+    /// that stand for themselves (weld_group -1), ascending; empty without a weld. With the
+    /// groups' copies these are the entries of ContactState::xw the step fills.
+    std::vector<NodeId> weld_plain;
 
     /// Boundary nodes (targets) of all bodies, ascending ids; those of body b are
     /// [body_bnode_begin[b], body_bnode_begin[b+1]).
@@ -114,6 +130,7 @@ struct ContactTopology {
     NodeId weld(NodeId i) const {
         return node_weld.empty() ? i : node_weld[static_cast<size_t>(i)];
     }
+    bool welded() const { return !weld_group.empty(); }
     int32_t num_virtual() const { return static_cast<int32_t>(virt_parent.size()); }
     int32_t num_contact_nodes() const { return num_real_nodes + num_virtual(); }
     int32_t num_sub_tris() const { return static_cast<int32_t>(sub_tri.size()); }

@@ -45,6 +45,11 @@ inline std::string differing_fields(const ContactTopology& a, const ContactTopol
     FDEM_CMP(body_fixed);
     FDEM_CMP(body_self);
     FDEM_CMP(node_weld);
+    FDEM_CMP(weld_group);
+    FDEM_CMP(weld_group_begin);
+    FDEM_CMP(weld_copy);
+    FDEM_CMP(weld_share);
+    FDEM_CMP(weld_plain);
     FDEM_CMP(boundary_nodes);
     FDEM_CMP(body_bnode_begin);
     FDEM_CMP(boundary_edges);

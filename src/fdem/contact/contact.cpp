@@ -76,18 +76,60 @@ inline void add_target_force(const ContactTopology& ct, State& s, NodeId t, Vec2
     s.f_contact[e[1]] += h;
 }
 
-// force f on contact node i (virtual: to its parents with the frozen weights, spec §4.4-6)
-inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f) {
-    if (i < ct.num_real_nodes) {
+// Welded contactor (docs/theory.md §6.15, eq. 6.23): the mass-weighted mean of group g's copies
+// of the values a (positions or velocities), the copies in ascending order (one fixed sum)
+inline Vec2 group_mean(const ContactTopology& ct, const Vec2* a, int32_t g) {
+    const int32_t b = ct.weld_group_begin[static_cast<size_t>(g)];
+    const int32_t e = ct.weld_group_begin[static_cast<size_t>(g) + 1];
+    Vec2 sum = ct.weld_share[static_cast<size_t>(b)] * a[ct.weld_copy[static_cast<size_t>(b)]];
+    for (int32_t k = b + 1; k < e; ++k)
+        sum += ct.weld_share[static_cast<size_t>(k)] * a[ct.weld_copy[static_cast<size_t>(k)]];
+    return sum;
+}
+
+// the contactor value of real node i: its sector's mean if grouped, else its own (no weld: a[i])
+inline Vec2 weld_mean(const ContactTopology& ct, const Vec2* a, NodeId i) {
+    if (!ct.welded()) return a[i];
+    const int32_t g = ct.weld_group[static_cast<size_t>(i)];
+    return g < 0 ? a[i] : group_mean(ct, a, g);
+}
+
+// force f on real contactor node i: to the copies of its sector by their mass shares if grouped
+// (the chain rule of eq. 6.23), else to i
+inline void add_real_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f) {
+    const int32_t g = ct.welded() ? ct.weld_group[static_cast<size_t>(i)] : -1;
+    if (g < 0) {
         s.f[i] += f;
         s.f_contact[i] += f;
         return;
     }
+    for (int32_t k = ct.weld_group_begin[static_cast<size_t>(g)];
+         k < ct.weld_group_begin[static_cast<size_t>(g) + 1]; ++k) {
+        const NodeId c = ct.weld_copy[static_cast<size_t>(k)];
+        const Vec2 fc = ct.weld_share[static_cast<size_t>(k)] * f;
+        s.f[c] += fc;
+        s.f_contact[c] += fc;
+    }
+}
+
+// force f on contact node i (virtual: to its parents with the frozen weights, spec §4.4-6)
+inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f) {
+    if (i < ct.num_real_nodes) {
+        add_real_force(ct, s, i, f);
+        return;
+    }
     const size_t v = static_cast<size_t>(i - ct.num_real_nodes);
-    for (int k = 0; k < 3; ++k) {
-        const Vec2 fk = ct.virt_weight[v][k] * f;
-        s.f[ct.virt_parent[v][k]] += fk;
-        s.f_contact[ct.virt_parent[v][k]] += fk;
+    for (int k = 0; k < 3; ++k)
+        add_real_force(ct, s, ct.virt_parent[v][k], ct.virt_weight[v][k] * f);
+}
+
+// ContactState::xw sized for the topology (no weld: empty)
+void size_weld_positions(const ContactTopology& ct, ContactState& cs) {
+    if (ct.welded()) {
+        if (cs.xw.size() != static_cast<size_t>(ct.num_real_nodes))
+            cs.xw.assign(static_cast<size_t>(ct.num_real_nodes), Vec2{});
+    } else {
+        cs.xw.clear();
     }
 }
 
@@ -124,6 +166,7 @@ void init_contact_state(const Model& m, State& s) {
     const size_t nt = static_cast<size_t>(ct.num_sub_tris());
     cs.xv.assign(nv, Vec2{});
     cs.vv.assign(nv, Vec2{});
+    size_weld_positions(ct, cs);
     // reservations: the grow-only buffers rarely need more than this after warm-up
     cs.cand.node.reserve(4 * nb + 16);
     cs.cand.body.reserve(4 * nb + 16);
@@ -154,6 +197,7 @@ void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> 
     const size_t nv = static_cast<size_t>(ct.num_virtual());
     cs.xv.assign(nv, Vec2{});
     cs.vv.assign(nv, Vec2{});
+    size_weld_positions(ct, cs);
 
     // an edge target's history follows its edge (the triangle's own copies, oriented): a broken
     // joint adds boundary edges and never removes one, so every old edge is found
@@ -188,6 +232,30 @@ void update_virtual_nodes(const Model&, State& s) {
     ContactState& cs = s.contact;
     const Vec2* x = s.x.data();
     const Vec2* v = s.v.data();
+    if (ct.welded()) {
+        // welded contactor positions (eq. 6.23): each grouped sector's mean once, to all its
+        // copies; the other referenced nodes as they are. Virtual nodes follow these positions
+        // and the sector-mean velocities of their parents
+        size_weld_positions(ct, cs);
+        Vec2* xw = cs.xw.data();
+        for (const NodeId i : ct.weld_plain)
+            xw[i] = x[i];
+        const int32_t ng = static_cast<int32_t>(ct.weld_group_begin.size()) - 1;
+        for (int32_t g = 0; g < ng; ++g) {
+            const Vec2 xm = group_mean(ct, x, g);
+            for (int32_t k = ct.weld_group_begin[static_cast<size_t>(g)];
+                 k < ct.weld_group_begin[static_cast<size_t>(g) + 1]; ++k)
+                xw[ct.weld_copy[static_cast<size_t>(k)]] = xm;
+        }
+        for (int32_t k = 0; k < ct.num_virtual(); ++k) {
+            const auto& p = ct.virt_parent[k];
+            const auto& w = ct.virt_weight[k];
+            cs.xv[k] = w[0] * xw[p[0]] + w[1] * xw[p[1]] + w[2] * xw[p[2]];
+            cs.vv[k] = w[0] * weld_mean(ct, v, p[0]) + w[1] * weld_mean(ct, v, p[1]) +
+                       w[2] * weld_mean(ct, v, p[2]);
+        }
+        return;
+    }
     for (int32_t k = 0; k < ct.num_virtual(); ++k) {
         const auto& p = ct.virt_parent[k];
         const auto& w = ct.virt_weight[k];
@@ -398,9 +466,10 @@ namespace {
     const BodyId bt = m.node_body[target_node(ct, j)];
     const ContactParams& p = pair_parameters(cm, m.bodies[c].material, m.bodies[bt].material);
     const Real scale = target_scale(ct, j);  // m_j / mbar (eq. 19), l_j / lbar, or eq. 6.19
-    Vec2 vc;
+    Vec2 vc;                                 // (welded contactor: sector-mean velocities, eq. 6.23)
     for (int k = 0; k < 3; ++k)
-        vc += fs.N[k] * cpos(ct, v, vv, q[k]);
+        vc += fs.N[k] *
+              (q[k] < ct.num_real_nodes ? weld_mean(ct, v, q[k]) : vv[q[k] - ct.num_real_nodes]);
     out.h = has_hist ? it->h : PairHistory{};
     const LawResult r =
         contact_law(p, fs.d, fs.grad, vc - target_point(ct, v, j), scale, dt, out.h);
@@ -428,8 +497,8 @@ namespace {
 // a division; only a point within a margin of the triangle goes on to barycentric(), which
 // computes the same c_i, so the accepted triangle and N are bitwise those of the full test.
 int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactState& cs,
-                      const Vec2* x, const Vec2* v, const Vec2* xv, const Vec2* vv, Real dt,
-                      int32_t pr, PairResult& out) {
+                      const Vec2* x, const Vec2* xc, const Vec2* v, const Vec2* xv, const Vec2* vv,
+                      Real dt, int32_t pr, PairResult& out) {
     const NodeId j = cs.cand.node[pr];
 
     // locate x_j: the candidate sub-triangle with the largest min N_i >= -eps
@@ -440,7 +509,7 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
     Vec2 pb[3];
     for (int32_t k = cs.cand.begin[pr]; k < cs.cand.begin[pr + 1]; ++k) {
         const auto& q = ct.sub_tri[cs.cand.tri[k]];
-        const Vec2 p[3] = {cpos(ct, x, xv, q[0]), cpos(ct, x, xv, q[1]), cpos(ct, x, xv, q[2])};
+        const Vec2 p[3] = {cpos(ct, xc, xv, q[0]), cpos(ct, xc, xv, q[1]), cpos(ct, xc, xv, q[2])};
         // N_i = c_i * (1 / a2) with |rounding| < 1e-15 relative, so any c_i beyond
         // kRejectMargin |a2| on the outer side gives N_i < -kLocateEps: rejected either way
         // (NaN and a2 == 0 fall through to barycentric(), which decides as before)
@@ -494,10 +563,12 @@ void add_contact_forces(const Model& m, State& s) {
     const Vec2* x = s.x.data();
     const Vec2* v = s.v.data();
 
-    // 1. virtual nodes follow their parents (spec §4.4-2)
+    // 1. virtual nodes follow their parents (spec §4.4-2); a welded contactor stands at its
+    //    sectors' mean positions xc (eq. 6.23), the targets stay at x (no weld: xc = x)
     update_virtual_nodes(m, s);
     const Vec2* xv = cs.xv.data();
     const Vec2* vv = cs.vv.data();
+    const Vec2* xc = ct.welded() ? cs.xw.data() : x;
 
     // 2. skin (spec §2.3): x^n - x^{n-1} = dt v^{n-1/2}; two objects close by at most
     //    2 dt max|v| per step, so the candidates stay complete until the sum exceeds b
@@ -518,7 +589,7 @@ void add_contact_forces(const Model& m, State& s) {
         if (cs.skin_used > cm.buffer) cs.need_rebuild = true;
     }
     if (cs.need_rebuild) {
-        find_candidates(m, ct, x, xv, cs.cand, cs.broad);
+        find_candidates(m, ct, x, xc, xv, cs.cand, cs.broad);
         cs.need_rebuild = false;
         cs.skin_used = 0;
         ++cs.rebuilds;
@@ -557,7 +628,7 @@ void add_contact_forces(const Model& m, State& s) {
         // implicit barrier completes them), then the pairs
 #pragma omp parallel if (npairs > kMinParallelPairs)
         {
-            if (boxes) body_boxes(ct, x, xv, box, nbodies);
+            if (boxes) body_boxes(ct, xc, xv, box, nbodies);
 #pragma omp for schedule(static)
             for (int32_t ch = 0; ch < kPairChunks; ++ch) {
                 const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
@@ -574,7 +645,7 @@ void add_contact_forces(const Model& m, State& s) {
                 int32_t nc = b;
                 for (int32_t k = b; k < n; ++k) {
                     const int32_t pr = in_contact[k];
-                    if (evaluate_pair(m, ct, ccs, x, v, xv, vv, dt, pr, out[pr]) >= 0)
+                    if (evaluate_pair(m, ct, ccs, x, xc, v, xv, vv, dt, pr, out[pr]) >= 0)
                         in_contact[nc++] = pr;
                 }
                 chunk_count[ch] = nc - b;
@@ -597,7 +668,7 @@ void add_contact_forces(const Model& m, State& s) {
         // (not for a self-contact pair: the node lies on its own body's boundary, where the
         // crossing test has no meaning)
         if (a.h.depth_ratio > kLostCheckRatio && a.body != bt &&
-            inside_body(ct, a.body, x, target_point(ct, x, a.node))) {
+            inside_body(ct, a.body, xc, target_point(ct, x, a.node))) {
             lost = true;  // left the boundary layer inwards: penetration too deep (spec §4.6)
             ++cs.lost_inside;
             if (cs.lost_node < 0 || a.h.depth_ratio > cs.lost_depth_ratio) {

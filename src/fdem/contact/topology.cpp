@@ -583,6 +583,70 @@ void add_edge_targets(const Model& m, ContactTopology& cm) {
     cm.target_dt_factor = factor;
 }
 
+// Welded contactor positions (docs/theory.md §6.15, eq. 6.23): the copies of every sector of a
+// fracture body that the contactor geometry references (a copy that is a sub-triangle vertex or a
+// virtual node's parent), with their mass shares m_c / M_S, as groups; the other referenced real
+// nodes (bodies without fracture, sectors of one copy) are listed as standing for themselves.
+// All copies of a grouped sector are in the group, referenced or not (the mean is the sector's).
+void build_weld_groups(const Model& m, ContactTopology& cm) {
+    const size_t n = static_cast<size_t>(m.num_nodes());
+    std::vector<uint8_t> referenced(n, 0);
+    for (const auto& q : cm.sub_tri) {
+        for (const NodeId i : q) {
+            if (i < cm.num_real_nodes) referenced[static_cast<size_t>(i)] = 1;
+        }
+    }
+    for (const auto& p : cm.virt_parent) {
+        for (const NodeId i : p)
+            referenced[static_cast<size_t>(i)] = 1;
+    }
+    // copies per sector (a sector's copies are in one body; node_weld is the identity elsewhere)
+    std::vector<int32_t> copies(n, 0);
+    std::vector<uint8_t> sector_used(n, 0);
+    for (size_t i = 0; i < n; ++i) {
+        ++copies[static_cast<size_t>(cm.node_weld[i])];
+        if (referenced[i]) sector_used[static_cast<size_t>(cm.node_weld[i])] = 1;
+    }
+    cm.weld_group.assign(n, -1);
+    std::vector<int32_t> group_of_sector(n, -1);
+    int32_t ng = 0;
+    for (size_t s = 0; s < n; ++s) {
+        if (sector_used[s] && copies[s] > 1) group_of_sector[s] = ng++;
+    }
+    cm.weld_group_begin.assign(static_cast<size_t>(ng) + 1, 0);
+    for (size_t i = 0; i < n; ++i) {
+        const int32_t g = group_of_sector[static_cast<size_t>(cm.node_weld[i])];
+        cm.weld_group[i] = g;
+        if (g >= 0) ++cm.weld_group_begin[static_cast<size_t>(g) + 1];
+        if (g < 0 && referenced[i]) cm.weld_plain.push_back(static_cast<NodeId>(i));
+    }
+    for (int32_t g = 0; g < ng; ++g)
+        cm.weld_group_begin[static_cast<size_t>(g) + 1] +=
+            cm.weld_group_begin[static_cast<size_t>(g)];
+    cm.weld_copy.assign(static_cast<size_t>(cm.weld_group_begin.back()), kNone);
+    cm.weld_share.assign(cm.weld_copy.size(), 0.0);
+    std::vector<int32_t> fill(cm.weld_group_begin.begin(), cm.weld_group_begin.end() - 1);
+    for (size_t i = 0; i < n; ++i) {  // ascending copies within each group
+        const int32_t g = cm.weld_group[i];
+        if (g >= 0)
+            cm.weld_copy[static_cast<size_t>(fill[static_cast<size_t>(g)]++)] =
+                static_cast<NodeId>(i);
+    }
+    for (int32_t g = 0; g < ng; ++g) {
+        const int32_t b = cm.weld_group_begin[static_cast<size_t>(g)],
+                      e = cm.weld_group_begin[static_cast<size_t>(g) + 1];
+        Real mass = 0;
+        for (int32_t k = b; k < e; ++k)
+            mass += m.node_mass[cm.weld_copy[static_cast<size_t>(k)]];
+        for (int32_t k = b; k < e; ++k) {
+            // massless copies (not expected: every element has a density) share equally
+            cm.weld_share[static_cast<size_t>(k)] =
+                mass > 0 ? m.node_mass[cm.weld_copy[static_cast<size_t>(k)]] / mass
+                         : 1.0 / static_cast<Real>(e - b);
+        }
+    }
+}
+
 // Body b of the old topology o, appended to t unchanged but for the ids that depend on what
 // comes before it: virtual node ids and boundary edge ids (node_dist_edge). Real node ids,
 // triangle ids and body ids do not move. Gives the arrays TopologyBuilder::body(b) would append
@@ -706,6 +770,7 @@ void assemble(const Model& m, const ContactTopology* old, const std::vector<uint
     cm.edge_target_base = cm.num_contact_nodes();
     if (m.contact.edge_targets && m.contact.algorithm == ContactAlgorithm::Smooth)
         add_edge_targets(m, cm);
+    if (!cm.node_weld.empty()) build_weld_groups(m, cm);
 
     // baseline B: phi_B per contactor sub-triangle (spec §1.3, docs/theory.md §7.4)
     if (m.contact.algorithm == ContactAlgorithm::LegacyBoundary) {

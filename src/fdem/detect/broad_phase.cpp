@@ -65,6 +65,11 @@ void clear_candidates(Candidates& out) {
 // branch-free. Output order = (node ascending, tri ascending) as before, independent of the grid.
 void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, const Vec2* xv,
                      Candidates& out, BroadPhaseScratch& g, BroadKernel kernel) {
+    find_candidates(m, ct, x, x, xv, out, g, kernel);
+}
+
+void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, const Vec2* xc,
+                     const Vec2* xv, Candidates& out, BroadPhaseScratch& g, BroadKernel kernel) {
     const ContactModel& cm = m.contact;
     const Real b = cm.buffer;
     const int32_t nt = ct.num_sub_tris();
@@ -75,7 +80,7 @@ void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, c
     }
     if (m.num_bodies() >= detail::kFixedKey)
         throw std::length_error("find_candidates: too many bodies");
-    const Real r_max = bounding_circles(ct, x, xv, g);
+    const Real r_max = bounding_circles(ct, xc, xv, g);
 
     // grid over the centroids (detect/grid.hpp); cell >= r_max + b, so every accepted centroid
     // lies in the 3x3 block around the node's cell. g.query is the fill cursor here, then the
@@ -144,8 +149,14 @@ void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, c
 
 void find_candidates_brute_force(const Model& m, const ContactTopology& ct, const Vec2* x,
                                  const Vec2* xv, Candidates& out, BroadPhaseScratch& g) {
+    find_candidates_brute_force(m, ct, x, x, xv, out, g);
+}
+
+void find_candidates_brute_force(const Model& m, const ContactTopology& ct, const Vec2* x,
+                                 const Vec2* xc, const Vec2* xv, Candidates& out,
+                                 BroadPhaseScratch& g) {
     const ContactModel& cm = m.contact;
-    bounding_circles(ct, x, xv, g);
+    bounding_circles(ct, xc, xv, g);
     detail::CandWriter w(out);
     auto query = [&](NodeId j) {
         g.query.clear();

@@ -22,8 +22,20 @@ enum class BroadKernel { Auto, Scalar };
 void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, const Vec2* xv,
                      Candidates& out, BroadPhaseScratch& g, BroadKernel kernel = BroadKernel::Auto);
 
+/// The same with the contactors' real vertices at xc and the targets at x: a welded topology
+/// (docs/theory.md §6.15, eq. 6.23) evaluates its sub-triangles on the sectors' mean positions
+/// (ContactState::xw), so the bounding circles are taken there, the positions the narrow phase
+/// locates in. xc = x gives the form above.
+void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, const Vec2* xc,
+                     const Vec2* xv, Candidates& out, BroadPhaseScratch& g,
+                     BroadKernel kernel = BroadKernel::Auto);
+
 /// O(N_nodes * N_tris) reference implementation of find_candidates (tests, T11).
 void find_candidates_brute_force(const Model& m, const ContactTopology& ct, const Vec2* x,
                                  const Vec2* xv, Candidates& out, BroadPhaseScratch& g);
+/// ... with contactor vertices at xc (as find_candidates above).
+void find_candidates_brute_force(const Model& m, const ContactTopology& ct, const Vec2* x,
+                                 const Vec2* xc, const Vec2* xv, Candidates& out,
+                                 BroadPhaseScratch& g);
 
 }  // namespace fdem

@@ -1,0 +1,243 @@
+// The welded contactor of a body with fracture (contact/contact.cpp, docs/theory.md §6.15 eq. 6.23,
+// §9.7 (a)): around an intact joint the copies of one vertex differ by the joint's deformation, so
+// the triangles cut from each triangle's own copies overlap and their fields disagree. Located
+// and evaluated on the sectors' mean positions, the contactor's field is continuous across intact
+// joints as in the continuous body, and the target force is the gradient of the contact energy:
+// moving a target through the region around a vertex, the energy changes by the work of the force
+// and never jumps where the located sub-triangle changes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "contact/contact.hpp"
+#include "detect/broad_phase.hpp"
+#include "fdem/simulate.hpp"
+#include "support/jointed.hpp"
+
+namespace fdem {
+namespace {
+
+using testing::add_jointed_body;
+using testing::all_edges;
+
+// A fixed 3 x 3 block (alternating diagonals) [0.5, 3.5] x [0, 3], jointed on every internal edge,
+// the contactor; a free triangle far above it whose tip (node `tip`) is the only target that
+// reaches it (two_way = false: the fixed block is the contactor; node targets, no friction, no
+// damping: the target force is minus the gradient of the pair's energy, theory §6.7).
+struct Scene {
+    Model m;
+    NodeId tip = kNone;
+    BodyId block = kNone, probe = kNone;
+};
+
+Scene make_scene(bool jointed, bool fixed_block = true) {
+    Scene sc;
+    Model& m = sc.m;
+    Material mat;
+    mat.name = "rock";
+    mat.density = 2000;
+    mat.youngs_modulus = 1e9;
+    m.materials.push_back(mat);
+    m.contact.algorithm = ContactAlgorithm::Smooth;
+    m.contact.two_way = false;
+    m.contact.edge_targets = false;
+    const MeshData block = make_rectangle_mesh(0.5, 0, 3, 3, 3, 3, true);
+    if (jointed) {
+        sc.block = add_jointed_body(m, block, all_edges, 0, fixed_block);
+    } else {
+        BodyOptions bo;
+        bo.name = "block";
+        bo.fixed = fixed_block;
+        std::vector<int32_t> ids(block.tris.size());
+        std::iota(ids.begin(), ids.end(), 0);
+        sc.block = m.num_bodies();
+        add_bodies(m, block, ids, bo);
+    }
+    MeshData tri;
+    tri.nodes = {{1.5, 5.0}, {1.8, 6.5}, {1.2, 6.5}};
+    tri.tris = {{0, 1, 2}};
+    BodyOptions po;
+    po.name = "probe";
+    sc.probe = m.num_bodies();
+    add_bodies(m, tri, std::vector<int32_t>{0}, po);
+    finalize_model(m);
+    sc.tip = m.bodies[sc.probe].node_begin;
+    return sc;
+}
+
+// the block's copies as a pre-stressed jointed body: every triangle expanded about its centroid by
+// the factor 1 + eps (its own copies only), so the triangles around every intact joint overlap by
+// about eps times their size (the compressed joints of theory §9.7 (a)); the continuous block is
+// expanded about its centre instead (the same outer shape within eps)
+void prestress(const Scene& sc, State& s, Real eps) {
+    const Model& m = sc.m;
+    const Body& b = m.bodies[sc.block];
+    for (TriId t = b.tri_begin; t < b.tri_end; ++t) {
+        const auto& n = m.tri_nodes[t];
+        const Vec2 c = (m.node_x0[n[0]] + m.node_x0[n[1]] + m.node_x0[n[2]]) / 3.0;
+        for (const NodeId i : n)
+            s.x[i] = c + (1.0 + eps) * (m.node_x0[i] - c);
+    }
+}
+
+struct Sample {
+    Real energy = 0;
+    Vec2 f;  // contact force on the tip
+    int active = 0;
+};
+
+// the tip at p (the probe rigidly with it), a fresh pair history (loading branch from zero: the
+// stored energy is the potential (m_j / mbar) k_n d^2 of eq. 6.7 with alpha = beta = 1)
+Sample probe_at(const Scene& sc, State& s, Vec2 p) {
+    const Model& m = sc.m;
+    const Body& b = m.bodies[sc.probe];
+    for (NodeId i = b.node_begin; i < b.node_end; ++i)
+        s.x[i] = p + (m.node_x0[i] - m.node_x0[sc.tip]);
+    s.contact.active.clear();
+    s.contact.need_rebuild = true;
+    std::fill(s.f.begin(), s.f.end(), Vec2{});
+    std::fill(s.f_contact.begin(), s.f_contact.end(), Vec2{});
+    add_contact_forces(m, s);
+    return Sample{s.energy.contact, s.f_contact[sc.tip], s.contact.active_contacts};
+}
+
+// Largest energy change along the path a -> b that the work of the force does not account for,
+// |E_{k+1} - E_k + (f_k + f_{k+1}) . (x_{k+1} - x_k) / 2|, over the largest force times the step
+// (the bound of the trapezoid error where the force has a kink: a continuous, piecewise smooth E
+// stays below 1; a jump of E does not shrink with the step).
+struct PathResult {
+    Real worst = 0;    // the ratio above
+    Real e_max = 0;    // largest energy on the path
+    int contacts = 0;  // samples in contact
+};
+
+PathResult walk(const Scene& sc, State& s, Vec2 a, Vec2 b, int n) {
+    std::vector<Sample> smp(static_cast<size_t>(n) + 1);
+    std::vector<Vec2> x(smp.size());
+    Real f_max = 0;
+    PathResult r;
+    for (int k = 0; k <= n; ++k) {
+        x[k] = a + (static_cast<Real>(k) / n) * (b - a);
+        smp[k] = probe_at(sc, s, x[k]);
+        EXPECT_LE(smp[k].active, 1) << "only the tip's pair (no self contact of the block)";
+        f_max = std::max(f_max, norm(smp[k].f));
+        r.e_max = std::max(r.e_max, smp[k].energy);
+        r.contacts += smp[k].active;
+    }
+    const Real h = norm(b - a) / n;
+    for (int k = 0; k < n; ++k) {
+        const Real work = 0.5 * dot(smp[k].f + smp[k + 1].f, x[k + 1] - x[k]);
+        const Real miss = std::abs(smp[k + 1].energy - smp[k].energy + work);
+        r.worst = std::max(r.worst, miss / (f_max * h));
+    }
+    return r;
+}
+
+// Paths just below the top face through the vertex (1.5, 3), where four triangles of the block
+// meet, one of which touches the boundary only at the vertex (the flat's-corner situation of the
+// Brazilian disc, theory §9.7 (a)), and a vertical path down through it.
+std::vector<std::array<Vec2, 2>> paths() {
+    return {{Vec2{1.2, 2.995}, Vec2{1.8, 2.995}},
+            {Vec2{1.2, 2.98}, Vec2{1.8, 2.98}},
+            {Vec2{1.2, 2.95}, Vec2{1.8, 2.95}},
+            {Vec2{1.503, 3.01}, Vec2{1.497, 2.85}}};
+}
+
+// The pre-stressed jointed block: no jump of the contact energy anywhere on the paths. Before the
+// welded contactor (main b090ccf) the worst ratio was far above 1 at the vertex (see theory §9.7).
+TEST(WeldedContactor, EnergyContinuousAcrossIntactJoints) {
+    const Scene sc = make_scene(true);
+    State s = make_state(sc.m, 1e-6);
+    ASSERT_TRUE(s.topology.welded());
+    prestress(sc, s, 0.01);
+    for (const auto& p : paths()) {
+        const PathResult r = walk(sc, s, p[0], p[1], 6000);
+        EXPECT_GT(r.contacts, 3000) << "the path runs through the contact layer";
+        EXPECT_GT(r.e_max, 0);
+        EXPECT_LT(r.worst, 1.0) << "energy jump on the path (" << p[0].x << ", " << p[0].y
+                                << ") -> (" << p[1].x << ", " << p[1].y << ")";
+    }
+}
+
+// The continuous block (no weld, expanded about its centre by the same factor) passes the same
+// check: it is the property the welded contactor restores.
+TEST(WeldedContactor, ContinuousBlockPassesTheSameCheck) {
+    const Scene sc = make_scene(false);
+    State s = make_state(sc.m, 1e-6);
+    ASSERT_FALSE(s.topology.welded());
+    const Body& b = sc.m.bodies[sc.block];
+    for (NodeId i = b.node_begin; i < b.node_end; ++i)
+        s.x[i] = Vec2{2.0, 1.5} + 1.01 * (sc.m.node_x0[i] - Vec2{2.0, 1.5});
+    for (const auto& p : paths()) {
+        const PathResult r = walk(sc, s, p[0] + Vec2{0, 0.015}, p[1] + Vec2{0, 0.015}, 6000);
+        EXPECT_GT(r.contacts, 3000);
+        EXPECT_LT(r.worst, 1.0);
+    }
+}
+
+// The reaction of eq. 20 on the welded contactor goes to the sectors' copies by their mass shares:
+// the contact forces of the pair sum to zero with zero moment, and every copy of a sector gets
+// the same force per unit mass.
+TEST(WeldedContactor, ReactionToCopiesByMassShares) {
+    const Scene sc = make_scene(true);
+    State s = make_state(sc.m, 1e-6);
+    prestress(sc, s, 0.01);
+    const Sample a = probe_at(sc, s, Vec2{1.47, 2.97});
+    ASSERT_EQ(a.active, 1);
+    Vec2 sum;
+    Real moment = 0, scale = 0;
+    for (NodeId i = 0; i < sc.m.num_nodes(); ++i) {
+        sum += s.f_contact[i];
+        moment += cross(s.x[i], s.f_contact[i]);
+        scale += norm(s.f_contact[i]);
+    }
+    ASSERT_GT(scale, 0);
+    EXPECT_LT(norm(sum), 1e-14 * scale);
+    // the moment of the copies' forces about the origin: x_c differs from the sector mean, but
+    // sum_c (m_c / M) x_c = xbar, so the moment is that of the forces at the sector means
+    EXPECT_LT(std::abs(moment), 5e-13 * scale);
+    const ContactTopology& ct = s.topology;
+    int grouped = 0;
+    for (size_t g = 0; g + 1 < ct.weld_group_begin.size(); ++g) {
+        const int32_t b = ct.weld_group_begin[g], e = ct.weld_group_begin[g + 1];
+        const NodeId c0 = ct.weld_copy[b];
+        const Vec2 a0 = s.f_contact[c0] / sc.m.node_mass[c0];
+        if (norm(a0) == 0) continue;
+        ++grouped;
+        for (int32_t k = b + 1; k < e; ++k) {
+            const NodeId c = ct.weld_copy[k];
+            EXPECT_LT(norm(s.f_contact[c] / sc.m.node_mass[c] - a0), 1e-12 * norm(a0)) << c;
+        }
+    }
+    EXPECT_GE(grouped, 3);  // the sub-triangle's corners that carry a share
+}
+
+// The broad phase bounds what the narrow phase evaluates: its bounding circles are taken on the
+// welded positions (the grid search equals the brute force there), and under copy perturbations
+// of 4 % of the element size the candidate lists of the grid and brute force agree.
+TEST(WeldedContactor, BroadPhaseOnWeldedPositions) {
+    // (the block free: the brute force does not know that a fixed body's nodes are no targets)
+    const Scene sc = make_scene(true, false);
+    State s = make_state(sc.m, 1e-6);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<Real> u(-0.04, 0.04);
+    for (int trial = 0; trial < 10; ++trial) {
+        for (NodeId i = 0; i < sc.m.num_nodes(); ++i)
+            s.x[i] = sc.m.node_x0[i] + Vec2{u(rng), u(rng)};
+        update_virtual_nodes(sc.m, s);
+        ContactState grid, brute;
+        find_candidates(sc.m, s.topology, s.x.data(), s.contact.xw.data(), s.contact.xv.data(),
+                        grid.cand, grid.broad);
+        find_candidates_brute_force(sc.m, s.topology, s.x.data(), s.contact.xw.data(),
+                                    s.contact.xv.data(), brute.cand, brute.broad);
+        EXPECT_EQ(grid.cand.node, brute.cand.node);
+        EXPECT_EQ(grid.cand.tri, brute.cand.tri);
+    }
+}
+
+}  // namespace
+}  // namespace fdem
