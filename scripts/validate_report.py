@@ -403,6 +403,38 @@ def fig_pull_apart(data, docs):
     return name
 
 
+def fig_shear(data, docs):
+    """Fracture V2 (spec fracture.md §11): grip shear stress against grip displacement at
+    sigma_n = 0 (blocks in simple shear, o held at 0) and the joints' shear stress against slip
+    at sigma_n = -5, -10 MPa, with the Mohr-Coulomb peaks c + |sigma_n| tan(phi)."""
+    path = os.path.join(data, "shear.csv")
+    if not os.path.exists(path):
+        return None
+    d = read(path)
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4))
+    ax[0].plot(d["u"] * 1e6, d["tau"] / 1e6, lw=1.2, label="fdem: grip reaction / W")
+    ax[0].axhline(30, color="k", ls=":", lw=0.8, label="c = 30 MPa")
+    ax[0].set(xlabel="grip displacement [µm]", ylabel="shear stress [MPa]",
+              title="V2 mode II, σ_n = 0 (o held at 0)")
+    ax[0].legend(fontsize=8)
+    for sn in (5, 10):
+        f = os.path.join(data, f"shear_sn{sn}.csv")
+        if not os.path.exists(f):
+            continue
+        b = read(f)
+        line, = ax[1].plot(b["u"] * 1e6, b["tau"] / 1e6, lw=1.2, label=f"fdem, σ_n = −{sn} MPa")
+        ax[1].axhline(30 + sn * np.tan(np.radians(30)), color=line.get_color(), ls=":", lw=0.8,
+                      label=f"c + {sn} tan 30° MPa")
+    ax[1].set(xlabel="slip of the upper block [µm]", ylabel="shear stress [MPa]",
+              title="V2 mode II under normal stress (before the break)")
+    ax[1].legend(fontsize=8)
+    fig.tight_layout()
+    name = "shear.png"
+    fig.savefig(os.path.join(docs, name), dpi=110)
+    plt.close(fig)
+    return name
+
+
 def lab_figures(data, docs):
     """Figures the lab-test examples left in DATA_DIR (scripts/labtest.py write_checks):
     fig_<case>_<k>.png with its title in fig_<case>_<k>.title, copied to DOCS_DIR."""
@@ -450,7 +482,9 @@ def main():
             ("Composite 6-node elements: block impact and sliding block (T13/T16 with ElementKind::Composite6)",
              fig_composite(data, docs)),
             ("Fracture V1: mode-I pull-apart of one jointed line (spec fracture.md §11, examples/07_pull_apart)",
-             fig_pull_apart(data, docs))]
+             fig_pull_apart(data, docs)),
+            ("Fracture V2: mode II of one jointed line, σ_n = 0, −5, −10 MPa (spec fracture.md §11)",
+             fig_shear(data, docs))]
     figs += lab_figures(data, docs)
     failed = [c for c in checks if c["pass"] == "FAIL"]
     out = ["# Validation: reproduction of Lei et al. (2020)", "",

@@ -9,8 +9,8 @@
 //
 // --quick uses the reduced resolutions of the CTest suite (label `validation`); the default is
 // the full resolution of the spec (label `full`). NAME: block, disk, slide, field, hertz,
-// sensitivity, legacy, composite. sensitivity and legacy run at the reduced resolution in both
-// modes (docs/validation/NOTES.md).
+// sensitivity, legacy, composite, pull_apart, shear. sensitivity and legacy run at the reduced
+// resolution in both modes (docs/validation/NOTES.md).
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -28,6 +28,7 @@
 #include "validation/cases/legacy_sliding.hpp"
 #include "validation/cases/pull_apart.hpp"
 #include "validation/cases/sensitivity.hpp"
+#include "validation/cases/shear.hpp"
 #include "validation/cases/sliding_block.hpp"
 
 using namespace fdem::validation;
@@ -93,10 +94,10 @@ int main(int argc, char** argv) {
             while (std::getline(ss, item, ','))
                 only.insert(item);
         } else {
-            std::fprintf(
-                stderr,
-                "usage: fdem_validate [--quick] [--out DIR] [--only "
-                "block,disk,slide,field,hertz,sensitivity,legacy,composite,pull_apart,...]\n");
+            std::fprintf(stderr,
+                         "usage: fdem_validate [--quick] [--out DIR] [--only "
+                         "block,disk,slide,field,hertz,sensitivity,legacy,composite,pull_apart,"
+                         "shear,...]\n");
             return 2;
         }
     }
@@ -162,6 +163,8 @@ int main(int argc, char** argv) {
 
     // spec fracture.md §11 V1 (examples/07_pull_apart): the same run in both modes (60 triangles)
     if (want("pull_apart")) add_case("pull_apart", pull_apart_suite(out));
+    // V2: mode II of the same line, sigma_n = 0, -5, -10 MPa (the same runs in both modes)
+    if (want("shear")) add_case("shear", shear_suite(out));
 
     for (const std::string& n : only) {
         if (ran.count(n) == 0) {
