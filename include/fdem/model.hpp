@@ -103,7 +103,12 @@ struct Load {
     /// (the body lies to the left of a -> b, the outward normal is (b - a) rotated by -90 deg)
     std::vector<std::array<NodeId, 2>> edges;
     std::vector<Real> edge_length0;  ///< reference length of each edge [m] (Traction)
-    std::vector<NodeId> nodes;       ///< Force: sorted, unique
+    std::vector<NodeId> nodes;       ///< Force: sorted, unique (every copy of a jointed vertex)
+    /// Force: the fraction of the resultant each node of `nodes` takes. Empty: 1/nodes.size()
+    /// each (no node copies). With fracture (finalize_model): F / (number of mesh vertices) per
+    /// vertex, split over its copies in proportion to their masses (theory eq. 4.11), so the
+    /// copies of an intact vertex get the same acceleration.
+    std::vector<Real> node_share;
     /// Slots of this load in State::scratch_load: one per edge or node, from slot_begin.
     int32_t slot_begin = 0;
     int32_t num_slots() const {

@@ -16,9 +16,9 @@ Real TimeFunction::at(Real t) const {
             // piecewise linear through (t_k, f_k), held at the first and last values (eq. 4.8)
             if (t <= table.front()[0]) return table.front()[1];
             if (t >= table.back()[0]) return table.back()[1];
-            const auto it = std::upper_bound(
-                table.begin(), table.end(), t,
-                [](Real v, const std::array<Real, 2>& p) { return v < p[0]; });
+            const auto it =
+                std::upper_bound(table.begin(), table.end(), t,
+                                 [](Real v, const std::array<Real, 2>& p) { return v < p[0]; });
             const std::array<Real, 2>& b = *it;
             const std::array<Real, 2>& a = *(it - 1);
             const Real s = (t - a[0]) / (b[0] - a[0]);
@@ -51,6 +51,13 @@ void evaluate_loads(const Model& m, Real t, const Vec2* x, Vec2* slot_f) {
                 break;
             }
             case LoadKind::Force: {
+                if (!ld.node_share.empty()) {
+                    // node copies of jointed vertices: mass shares (theory eq. 4.11)
+                    const Vec2 f = k * ld.vector;
+                    for (size_t i = 0; i < ld.nodes.size(); ++i)
+                        out[i] = ld.node_share[i] * f;
+                    break;
+                }
                 const Vec2 share = (k / static_cast<Real>(ld.nodes.size())) * ld.vector;
                 for (size_t i = 0; i < ld.nodes.size(); ++i)
                     out[i] = share;

@@ -412,6 +412,7 @@ uint64_t model_hash(const Model& m, const ContactTopology& t, Real dt) {
         put(h, ld.edges);
         put(h, ld.edge_length0);
         put(h, ld.nodes);
+        if (!ld.node_share.empty()) put(h, ld.node_share);  // jointed vertices only
     }
     put(h, m.mass_damping.coefficient);
     put(h, m.mass_damping.until);

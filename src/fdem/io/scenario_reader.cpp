@@ -1296,8 +1296,8 @@ private:
                         if (id != kNone) ld.nodes.push_back(id);
                     }
                 }
-                std::sort(ld.nodes.begin(), ld.nodes.end());
-                ld.nodes.erase(std::unique(ld.nodes.begin(), ld.nodes.end()), ld.nodes.end());
+                // every copy of a jointed vertex (the shares: finalize_model, theory eq. 4.9)
+                add_node_copies(m_, entry, ld.nodes);
                 if (ld.nodes.empty()) {
                     f.fail(*f.node("group"), "group",
                            fmt::format("physical group \"{}\" selects none of the nodes of body "

@@ -583,6 +583,34 @@ void finalize_model(Model& m, std::vector<int32_t>& node_new) {
     std::stable_sort(m.kicks.begin(), m.kicks.end(),
                      [](const VelocityKick& a, const VelocityKick& b) { return a.time < b.time; });
 
+    // point forces on jointed vertices: F / (number of vertices) per vertex, split over its
+    // node copies by mass (theory eq. 4.11); no shares (equal split) when no vertex has copies
+    if (m.node_vertex.size() == nn) {
+        for (Load& ld : m.loads) {
+            ld.node_share.clear();
+            if (ld.kind != LoadKind::Force) continue;
+            std::vector<NodeId> reps;
+            for (const NodeId i : ld.nodes)
+                reps.push_back(m.node_vertex[static_cast<size_t>(i)]);
+            std::vector<NodeId> vertices = reps;
+            std::sort(vertices.begin(), vertices.end());
+            vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+            if (vertices.size() == ld.nodes.size()) continue;  // one node per vertex
+            std::vector<Real> vertex_mass(vertices.size(), 0.0);
+            const auto vid = [&](NodeId r) {
+                return static_cast<size_t>(std::lower_bound(vertices.begin(), vertices.end(), r) -
+                                           vertices.begin());
+            };
+            for (size_t k = 0; k < ld.nodes.size(); ++k)
+                vertex_mass[vid(reps[k])] += m.node_mass[static_cast<size_t>(ld.nodes[k])];
+            const Real per_vertex = 1.0 / static_cast<Real>(vertices.size());
+            ld.node_share.resize(ld.nodes.size());
+            for (size_t k = 0; k < ld.nodes.size(); ++k)
+                ld.node_share[k] = per_vertex * m.node_mass[static_cast<size_t>(ld.nodes[k])] /
+                                   vertex_mass[vid(reps[k])];
+        }
+    }
+
     int32_t slot = 0;  // State::scratch_load slots of each load
     for (Load& ld : m.loads) {
         ld.slot_begin = slot;

@@ -2,7 +2,9 @@
 // forces of traction, follower pressure and point forces, and their power.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <string>
+#include <vector>
 
 #include "fdem/scenario.hpp"
 #include "fdem/simulate.hpp"
@@ -44,8 +46,7 @@ TEST(TimeFunction, ConstantRampAndTable) {
 }
 
 // The unit square of tests/data/square_41_ascii.msh with one load on `group`.
-Scenario square_with(const std::string& load,
-                     const std::string& mesh = "square_41_ascii.msh") {
+Scenario square_with(const std::string& load, const std::string& mesh = "square_41_ascii.msh") {
     return load_scenario_from_string(R"([simulation]
 end_time = 0.01
 dt = 1e-6
@@ -83,9 +84,12 @@ TEST(LoadKernels, PressurePushesInwardWithItsEdgeLength) {
     Vec2 left{0, 0}, right{0, 0};
     for (NodeId i = 0; i < m.num_nodes(); ++i) {
         const Vec2 p = m.node_x0[i];
-        if (p.x < 1e-12) left += f[i];
-        else if (p.x > 1 - 1e-12) right += f[i];
-        else EXPECT_EQ(norm(f[i]), 0.0) << "interior node " << i;
+        if (p.x < 1e-12)
+            left += f[i];
+        else if (p.x > 1 - 1e-12)
+            right += f[i];
+        else
+            EXPECT_EQ(norm(f[i]), 0.0) << "interior node " << i;
     }
     EXPECT_NEAR(left.x, 3.0, 1e-12);
     EXPECT_NEAR(right.x, -3.0, 1e-12);
@@ -190,6 +194,78 @@ TEST(LoadKernels, PointForceSharesAndPower) {
     std::vector<Vec2> slot_f(1), v(static_cast<size_t>(m.num_nodes()), Vec2{1.0, 3.0});
     evaluate_loads(m, 0.25, m.node_x0.data(), slot_f.data());
     EXPECT_DOUBLE_EQ(load_power(m, slot_f.data(), v.data()), 1.0 - 1.5);
+}
+
+// On a fully jointed body a mesh vertex has one node copy per triangle around it. A point force
+// acts on the vertex as a whole: F / (number of vertices) per vertex, split over its copies by
+// mass (theory eq. 4.11), so all copies of a vertex get the same acceleration. (Before, the
+// force went to one copy per vertex only and the others got nothing.)
+TEST(LoadKernels, PointForceOnJointedVerticesActsOnEveryCopy) {
+    const Scenario sc = load_scenario_from_string(R"([simulation]
+end_time = 0.01
+dt = 1e-7
+[[material]]
+name = "m"
+density = 1000.0
+youngs_modulus = 1e9
+poisson_ratio = 0.25
+[material.fracture]
+tensile_strength = 1e6
+cohesion = 2e6
+friction_angle = 30.0
+fracture_energy_I = 1000.0
+fracture_energy_II = 2000.0
+penalty = 1e10
+[[body]]
+name = "sq"
+mesh = "square_41_ascii.msh"
+material = "m"
+[[load]]
+body = "sq"
+group = "bottom"
+force = [4.0, -2.0]
+)",
+                                                  "loads.toml", FDEM_TEST_DATA_DIR);
+    const Model& m = sc.model;
+    ASSERT_EQ(m.node_vertex.size(), static_cast<size_t>(m.num_nodes()));
+    const Load& ld = m.loads[0];
+    // the vertices of the bottom edge (y = 0) and all their copies
+    std::map<NodeId, std::vector<NodeId>> copies;
+    for (NodeId i = 0; i < m.num_nodes(); ++i) {
+        if (m.node_x0[i].y == 0.0) copies[m.node_vertex[static_cast<size_t>(i)]].push_back(i);
+    }
+    size_t n_copies = 0, shared = 0;
+    for (const auto& [v, c] : copies) {
+        n_copies += c.size();
+        shared += c.size() > 1 ? 1 : 0;
+    }
+    ASSERT_GT(shared, 0u);  // some bottom vertices have several copies
+    EXPECT_EQ(ld.nodes.size(), n_copies);
+    const std::vector<Vec2> f = load_forces(m, m.node_x0, 0.0);
+    const Real nv = static_cast<Real>(copies.size());
+    Vec2 total{0, 0};
+    for (const auto& [v, c] : copies) {
+        Vec2 fv{0, 0};
+        for (const NodeId i : c) {
+            fv += f[i];
+            // the same acceleration F / (N_v M_v) for every copy of the vertex
+            Real mv = 0;
+            for (const NodeId j : c)
+                mv += m.node_mass[j];
+            EXPECT_NEAR(f[i].x / m.node_mass[i], 4.0 / (nv * mv), 1e-12 * 4.0 / (nv * mv));
+            EXPECT_NEAR(f[i].y / m.node_mass[i], -2.0 / (nv * mv), 1e-12 * 2.0 / (nv * mv));
+        }
+        EXPECT_NEAR(fv.x, 4.0 / nv, 1e-14);
+        EXPECT_NEAR(fv.y, -2.0 / nv, 1e-14);
+        total += fv;
+    }
+    EXPECT_NEAR(total.x, 4.0, 1e-13);
+    EXPECT_NEAR(total.y, -2.0, 1e-13);
+    // its power is F_i . v_i summed over the copies
+    std::vector<Vec2> slot_f(static_cast<size_t>(ld.num_slots()));
+    std::vector<Vec2> v(static_cast<size_t>(m.num_nodes()), Vec2{1.0, 3.0});
+    evaluate_loads(m, 0.0, m.node_x0.data(), slot_f.data());
+    EXPECT_NEAR(load_power(m, slot_f.data(), v.data()), 4.0 - 6.0, 1e-13);
 }
 
 // A run without [[load]] is untouched; with loads the step is deterministic and allocates no
