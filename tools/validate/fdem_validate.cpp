@@ -9,8 +9,8 @@
 //
 // --quick uses the reduced resolutions of the CTest suite (label `validation`); the default is
 // the full resolution of the spec (label `full`). NAME: block, disk, slide, field, hertz,
-// sensitivity, legacy, composite, pull_apart, shear. sensitivity and legacy run at the reduced
-// resolution in both modes (docs/validation/NOTES.md).
+// sensitivity, legacy, composite, pull_apart, shear, penalty. sensitivity and legacy run at the
+// reduced resolution in both modes (docs/validation/NOTES.md).
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -26,6 +26,7 @@
 #include "validation/cases/field_maps.hpp"
 #include "validation/cases/hertz.hpp"
 #include "validation/cases/legacy_sliding.hpp"
+#include "validation/cases/penalty.hpp"
 #include "validation/cases/pull_apart.hpp"
 #include "validation/cases/sensitivity.hpp"
 #include "validation/cases/shear.hpp"
@@ -97,7 +98,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr,
                          "usage: fdem_validate [--quick] [--out DIR] [--only "
                          "block,disk,slide,field,hertz,sensitivity,legacy,composite,pull_apart,"
-                         "shear,...]\n");
+                         "shear,penalty,...]\n");
             return 2;
         }
     }
@@ -165,6 +166,10 @@ int main(int argc, char** argv) {
     if (want("pull_apart")) add_case("pull_apart", pull_apart_suite(out));
     // V2: mode II of the same line, sigma_n = 0, -5, -10 MPa (the same runs in both modes)
     if (want("shear")) add_case("shear", shear_suite(out));
+    // V3, V3b: penalty sensitivity (structured mesh; + 3 unstructured meshes in full mode), time
+    // step
+    if (want("penalty"))
+        add_case("penalty", penalty_suite(quick ? PenaltyOptions::quick() : PenaltyOptions{}, out));
 
     for (const std::string& n : only) {
         if (ran.count(n) == 0) {

@@ -1,0 +1,19 @@
+// Validation V3 of spec fracture.md §11 (tests/validation/cases/penalty.hpp): a 0.02 m square,
+// structured right-triangle mesh of 10 x 10 cells (h = 0.002 m), every cell cut by its
+// diagonal in the same direction; fully jointed in the scenario (every internal edge).
+L = 0.02;
+Point(1) = {0, 0, 0};
+Point(2) = {L, 0, 0};
+Point(3) = {L, L, 0};
+Point(4) = {0, L, 0};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Transfinite Curve {1, 2, 3, 4} = 11;
+Transfinite Surface {1};
+Physical Surface("square") = {1};
+Physical Curve("left") = {4};
+Physical Curve("right") = {2};
