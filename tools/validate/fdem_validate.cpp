@@ -9,8 +9,8 @@
 //
 // --quick uses the reduced resolutions of the CTest suite (label `validation`); the default is
 // the full resolution of the spec (label `full`). NAME: block, disk, slide, field, hertz,
-// sensitivity, legacy, composite, pull_apart, shear, penalty. sensitivity and legacy run at the
-// reduced resolution in both modes (docs/validation/NOTES.md).
+// sensitivity, legacy, composite, pull_apart, shear, penalty, refinement. sensitivity and legacy
+// run at the reduced resolution in both modes (docs/validation/NOTES.md).
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -28,6 +28,7 @@
 #include "validation/cases/legacy_sliding.hpp"
 #include "validation/cases/penalty.hpp"
 #include "validation/cases/pull_apart.hpp"
+#include "validation/cases/refinement.hpp"
 #include "validation/cases/sensitivity.hpp"
 #include "validation/cases/shear.hpp"
 #include "validation/cases/sliding_block.hpp"
@@ -98,7 +99,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr,
                          "usage: fdem_validate [--quick] [--out DIR] [--only "
                          "block,disk,slide,field,hertz,sensitivity,legacy,composite,pull_apart,"
-                         "shear,penalty,...]\n");
+                         "shear,penalty,refinement,...]\n");
             return 2;
         }
     }
@@ -170,6 +171,10 @@ int main(int argc, char** argv) {
     // step
     if (want("penalty"))
         add_case("penalty", penalty_suite(quick ? PenaltyOptions::quick() : PenaltyOptions{}, out));
+    // V7 on V1: the inclined jointed line at h, h/2, h/4 x 3 meshes (quick: h only)
+    if (want("refinement"))
+        add_case("refinement",
+                 refinement_suite(quick ? RefinementOptions::quick() : RefinementOptions{}, out));
 
     for (const std::string& n : only) {
         if (ran.count(n) == 0) {
