@@ -471,8 +471,18 @@ namespace {
         vc += fs.N[k] *
               (q[k] < ct.num_real_nodes ? weld_mean(ct, v, q[k]) : vv[q[k] - ct.num_real_nodes]);
     out.h = has_hist ? it->h : PairHistory{};
+    // birth depth (theory eq. 9.24): a self pair (rule X) starts from the depth it is found at,
+    // which a break's rebuild, or the node's own-sector triangles it came from, revealed rather
+    // than a motion against the field made; d0 only falls, to d, where the law's force and
+    // potential are zero. Pairs of two bodies keep d0 = 0 (the law sees d, bitwise).
+    if (!has_hist) {
+        if (c == bt) out.h.d0 = fs.d;
+    } else if (out.h.d0 > fs.d) {
+        out.h.d0 = fs.d;
+    }
+    const Real d_law = out.h.d0 > 0 ? fs.d - out.h.d0 : fs.d;
     const LawResult r =
-        contact_law(p, fs.d, fs.grad, vc - target_point(ct, v, j), scale, dt, out.h);
+        contact_law(p, d_law, fs.grad, vc - target_point(ct, v, j), scale, dt, out.h);
 
     // depth diagnostics: d relative to the local layer thickness
     out.h.depth_ratio = fs.layer > 0 ? fs.d / fs.layer : 1.0;

@@ -97,6 +97,7 @@ void put(Sink& o, const PairHistory& h) {
     put(o, h.stored);
     put(o, h.f_damp);
     put(o, h.depth_ratio);
+    put(o, h.d0);
     put(o, h.unloading);
 }
 
@@ -290,6 +291,7 @@ public:
             get(v.stored);
             get(v.f_damp);
             get(v.depth_ratio);
+            get(v.d0);
             get(v.unloading);
         } else if constexpr (std::is_same_v<T, ActiveContact>) {
             get(v.node);

@@ -7,10 +7,13 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <set>
 
 #include "contact/contact.hpp"
 #include "fdem/simulate.hpp"
 #include "fracture/sectors.hpp"
+#include "io/checkpoint.hpp"
 #include "support/jointed.hpp"
 #include "support/topology_compare.hpp"
 
@@ -34,7 +37,7 @@ constexpr Real kCrackY = 2.0;
 //       |     base (fixed)      |
 //  y=-1 +-----------------------+
 //      x=0  0.5            6.5  7
-Model cracked_block(bool far_body = false) {
+Model cracked_block(bool far_body = false, bool last_intact = false) {
     Model m;
     Material mat;
     mat.name = "rock";
@@ -60,7 +63,12 @@ Model cracked_block(bool far_body = false) {
     auto on_crack = [&](int32_t a, int32_t b) {
         return block.nodes[a].y == kCrackY && block.nodes[b].y == kCrackY;
     };
-    testing::add_jointed_body(m, block, on_crack, 0, false, {}, on_crack);  // crack pre-broken
+    // the crack pre-broken (last_intact: but for its last joint, x in [5.5, 6.5])
+    auto prebroken = [&](int32_t a, int32_t b) {
+        return on_crack(a, b) &&
+               !(last_intact && block.nodes[a].x >= 5.5 && block.nodes[b].x >= 5.5);
+    };
+    testing::add_jointed_body(m, block, on_crack, 0, false, {}, prebroken);
     finalize_model(m);
     return m;
 }
@@ -89,15 +97,6 @@ bool in_upper(const Model& m, const State& s, NodeId i) {
         return (m.node_x0[n[0]].y + m.node_x0[n[1]].y + m.node_x0[n[2]].y) / 3.0 > kCrackY;
     }
     return false;
-}
-
-// State whose contact topology has the sectors of `broken` joints (make_state's are those of the
-// model's pre-broken joints): for contact-only evaluations at other statuses
-State cracked_state(const Model& m, const std::vector<int32_t>& broken, Real dt) {
-    State s = make_state(m, dt);
-    compute_node_sectors(m, statuses(m, broken), s.node_sector);
-    init_contact_state(m, s);
-    return s;
 }
 
 // the upper half rests on the lower one across the broken crack: at rest the crack's contact
@@ -169,7 +168,8 @@ TEST(SelfContact, CrackCarriesTheUpperHalf) {
 }
 
 // U7: a crack closed under load, evaluated at one configuration (the rest state of the fully
-// broken crack) with the topology before and after its last joint breaks: with rule X the crack
+// broken crack, with its pair history) with the topology before and after its last joint breaks:
+// with rule X the crack
 // faces are in contact before the split, and the split changes no contact force outside the
 // triangles around the last joint's two vertices (x >= 4.5 here)
 TEST(SelfContact, SplitChangesNoForceAwayFromTheLastJoint) {
@@ -182,9 +182,14 @@ TEST(SelfContact, SplitChangesNoForceAwayFromTheLastJoint) {
     for (int n = 0; n < steps; ++n)
         step(m, rest);
 
+    // the rest state with the sectors of `broken` and its pair history (edge targets follow
+    // their edges, rebuild_contact_topology): a self pair's law is measured from its birth depth
+    // (theory eq. 9.24), so without the history a first evaluation gives no self-contact force
     auto contact_at_rest = [&](const std::vector<int32_t>& broken) {
-        State s = cracked_state(m, broken, rest.dt);
-        s.x = rest.x;  // the same configuration, at rest, no pair history
+        State s = rest;
+        compute_node_sectors(m, statuses(m, broken), s.node_sector);
+        const BodyId dirty[1] = {1};
+        rebuild_contact_topology(m, s, dirty);
         std::fill(s.f.begin(), s.f.end(), Vec2{});
         std::fill(s.f_contact.begin(), s.f_contact.end(), Vec2{});
         add_contact_forces(m, s);
@@ -220,6 +225,100 @@ TEST(SelfContact, SplitChangesNoForceAwayFromTheLastJoint) {
         "contact on the upper half: %.6g of its weight before the split, %.6g after; max change "
         "at x < 4.5: %.3g of the largest force\n",
         upper_before / w_upper, upper_after / w_upper, max_diff / f_scale);
+}
+
+// Contact birth at a break (theory §9.7 (b), eq. 9.24; spec fracture.md §4.3): the crack's last
+// joint, compressed by the upper half's weight, breaks; the split vertices' copies, which the
+// joint held overlapping by its compression, become self pairs of the other face's sub-triangles
+// (rule X) already inside them. They are born with no stored energy and no force (the law
+// measures the depth from d0 = d at birth), stay in the history while d > 0 and load from there;
+// a checkpoint taken after the break restores d0 and continues bitwise.
+TEST(SelfContact, ContactBornAtABreakStoresNoEnergy) {
+    Model m = cracked_block(false, true);
+    m.mass_damping = {150.0, 1e9};
+    const std::vector<int32_t> crack = crack_joints(m);
+    const int32_t last = crack.back();
+    State s = make_state(m, 1.0);
+    s.dt = 0.5 * stable_time_step(m, s.topology);
+    const int steps = static_cast<int>(0.25 / s.dt);
+    for (int n = 0; n < steps; ++n)
+        step(m, s);
+    ASSERT_EQ(s.joints.status[static_cast<size_t>(last)], JointStatus::Intact);
+
+    // the last joint carries the compression at the crack's end: its faces overlap (eq. 9.2,
+    // o < 0 at both ends)
+    const auto& jn = m.joints.nodes[static_cast<size_t>(last)];
+    const Vec2 eb = 0.5 * ((s.x[jn[1]] - s.x[jn[0]]) + (s.x[jn[2]] - s.x[jn[3]]));
+    const Vec2 n = perp(eb / norm(eb));
+    const Real overlap =
+        -std::max(dot(n, s.x[jn[0]] - s.x[jn[3]]), dot(n, s.x[jn[1]] - s.x[jn[2]]));
+    ASSERT_GT(overlap, 0);
+
+    // pairs keyed by their target's nodes (an edge target's id changes when a break adds
+    // boundary edges, theory §6.12) and contactor body
+    using Key = std::array<NodeId, 3>;
+    auto key = [](const State& st, const ActiveContact& a) {
+        const ContactTopology& ct = st.topology;
+        if (a.node < ct.edge_target_base) return Key{a.node, kNone, a.body};
+        const auto& e = ct.boundary_edges[static_cast<size_t>(a.node - ct.edge_target_base)];
+        return Key{e[0], e[1], a.body};
+    };
+    std::set<Key> before;
+    for (const ActiveContact& a : s.contact.active)
+        before.insert(key(s, a));
+    const Real contact_before = s.energy.contact;
+
+    // break it in the next step: frozen damage 1 at its three points (spec §3.9)
+    s.joints.status[static_cast<size_t>(last)] = JointStatus::Softening;
+    s.joints.d_max[static_cast<size_t>(last)] = {1.0, 1.0, 1.0};
+    const int64_t break_step = s.step;
+    step(m, s);
+    ASSERT_EQ(s.joints.status[static_cast<size_t>(last)], JointStatus::Broken);
+    ASSERT_EQ(s.joints.break_step[static_cast<size_t>(last)], break_step);
+
+    int born = 0;
+    Real born_stored = 0, born_depth = 0;
+    std::set<Key> born_pairs;
+    for (const ActiveContact& a : s.contact.active) {
+        if (before.count(key(s, a)) != 0) continue;
+        ++born;
+        born_pairs.insert(key(s, a));
+        born_stored += a.h.stored;
+        born_depth = std::max(born_depth, a.h.d0);
+        EXPECT_EQ(a.body, 1);
+        EXPECT_EQ(m.node_body[target_node(s.topology, a.node)], 1);  // self pairs
+    }
+    // the split vertices' copies meet the other face's sub-triangles already inside (without
+    // eq. 9.24 these 7 pairs were born storing 0.74 J/m, half the contact energy of the whole
+    // crack before the break, 1.44 J/m, against the joint's own elastic energy of ~7e-5 J/m)
+    EXPECT_GE(born, 2);
+    EXPECT_EQ(born_stored, 0.0);
+    EXPECT_GT(born_depth, 0.1 * overlap);
+    std::printf(
+        "break under compression: joint overlap %.4g m, %d self pairs born, stored %.4g J/m "
+        "(contact energy before %.4g J/m), birth depth up to %.4g m\n",
+        overlap, born, born_stored, contact_before, born_depth);
+
+    // the born pairs stay in the history while d > 0 (also where d - d0 = 0); a restart from a
+    // checkpoint with their d0 continues bitwise
+    step(m, s);
+    int kept = 0;
+    for (const ActiveContact& a : s.contact.active)
+        kept += born_pairs.count(key(s, a)) != 0 && a.h.d0 > 0 ? 1 : 0;
+    EXPECT_EQ(kept, born);
+    const std::string path = ::testing::TempDir() + "/birth_depth.fdck";
+    write_checkpoint(path, m, s, {});
+    State r = make_state(m, s.dt);
+    RunProgress q;
+    read_checkpoint(path, m, r, q);
+    for (int k = 0; k < 200; ++k) {
+        step(m, s);
+        step(m, r);
+    }
+    EXPECT_EQ(std::memcmp(s.x.data(), r.x.data(), s.x.size() * sizeof(Vec2)), 0);
+    EXPECT_EQ(std::memcmp(s.v.data(), r.v.data(), s.v.size() * sizeof(Vec2)), 0);
+    EXPECT_EQ(state_hash(s), state_hash(r));
+    std::filesystem::remove(path);
 }
 
 // rebuild_contact_topology moves the histories of edge targets to their edges' new ids: a run
