@@ -20,7 +20,7 @@ struct PairHistory {
     Real stored = 0;       ///< stored energy of the pair at the previous step [J/m]
     Vec2 f_damp;           ///< damping force gamma v_r of the previous step, unscaled [N/m]
     Real depth_ratio = 0;  ///< d / largest nodal distance of the triangle, previous step [-]
-    /// birth depth: the law sees d - d0 (theory eq. 9.24); d0 = d when a self pair (rule X) is
+    /// birth depth: the law sees d - d0 (theory eq. 9.25); d0 = d when a self pair (rule X) is
     /// born, then min(d0, d); 0 for pairs of two bodies [m]
     Real d0 = 0;
     int8_t unloading = 0;  ///< literal law: 1 while on the unloading branch

@@ -471,7 +471,7 @@ namespace {
         vc += fs.N[k] *
               (q[k] < ct.num_real_nodes ? weld_mean(ct, v, q[k]) : vv[q[k] - ct.num_real_nodes]);
     out.h = has_hist ? it->h : PairHistory{};
-    // birth depth (theory eq. 9.24): a self pair (rule X) starts from the depth it is found at,
+    // birth depth (theory eq. 9.25): a self pair (rule X) starts from the depth it is found at,
     // which a break's rebuild, or the node's own-sector triangles it came from, revealed rather
     // than a motion against the field made; d0 only falls, to d, where the law's force and
     // potential are zero. Pairs of two bodies keep d0 = 0 (the law sees d, bitwise).

@@ -44,7 +44,7 @@ struct LawResult {
 /// Evaluate the law for depth d >= 0 and gradient grad (field sample), relative velocity
 /// v_r = v_c - v_j (v^{n-1/2}), mass scale m_j / mbar, time step dt. Updates the pair history h
 /// (h must be value-initialised for a new contact). d is the depth the law sees, d - d0 of a
-/// self pair (theory eq. 9.24): d_max, d_prev, the branch and the stored energy are in that
+/// self pair (theory eq. 9.25): d_max, d_prev, the branch and the stored energy are in that
 /// measure, and every branch has g = psi = 0 at d = 0, where d0 moves.
 ///
 /// Energy (theory §6.7): 'stored' is the energy the pair returns if it unloads now; the

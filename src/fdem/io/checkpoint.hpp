@@ -37,7 +37,7 @@ constexpr uint32_t kCheckpointFormat = 9;  // 2: baseline A couples (ContactStat
                                            // 6: State::bc_velocity, bc_enabled (controls)
                                            // 7: Energy::joint, fracture (issue #14)
                                            // 8: JointState history (State::joints)
-                                           // 9: PairHistory::d0 (birth depth, eq. 9.24)
+                                           // 9: PairHistory::d0 (birth depth, eq. 9.25)
 
 /// CLI bookkeeping that must survive a restart so output continues where it stopped.
 struct RunProgress {

@@ -184,7 +184,7 @@ TEST(SelfContact, SplitChangesNoForceAwayFromTheLastJoint) {
 
     // the rest state with the sectors of `broken` and its pair history (edge targets follow
     // their edges, rebuild_contact_topology): a self pair's law is measured from its birth depth
-    // (theory eq. 9.24), so without the history a first evaluation gives no self-contact force
+    // (theory eq. 9.25), so without the history a first evaluation gives no self-contact force
     auto contact_at_rest = [&](const std::vector<int32_t>& broken) {
         State s = rest;
         compute_node_sectors(m, statuses(m, broken), s.node_sector);
@@ -227,7 +227,7 @@ TEST(SelfContact, SplitChangesNoForceAwayFromTheLastJoint) {
         upper_before / w_upper, upper_after / w_upper, max_diff / f_scale);
 }
 
-// Contact birth at a break (theory §9.7 (b), eq. 9.24; spec fracture.md §4.3): the crack's last
+// Contact birth at a break (theory §9.7 (b), eq. 9.25; spec fracture.md §4.3): the crack's last
 // joint, compressed by the upper half's weight, breaks; the split vertices' copies, which the
 // joint held overlapping by its compression, become self pairs of the other face's sub-triangles
 // (rule X) already inside them. They are born with no stored energy and no force (the law
@@ -289,7 +289,7 @@ TEST(SelfContact, ContactBornAtABreakStoresNoEnergy) {
         EXPECT_EQ(m.node_body[target_node(s.topology, a.node)], 1);  // self pairs
     }
     // the split vertices' copies meet the other face's sub-triangles already inside (without
-    // eq. 9.24 these 7 pairs were born storing 0.74 J/m, half the contact energy of the whole
+    // eq. 9.25 these 7 pairs were born storing 0.74 J/m, half the contact energy of the whole
     // crack before the break, 1.44 J/m, against the joint's own elastic energy of ~7e-5 J/m)
     EXPECT_GE(born, 2);
     EXPECT_EQ(born_stored, 0.0);

@@ -259,7 +259,7 @@ TEST_F(CheckpointTest, RefusesAnotherFormatAndVersion) {
 TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // 48 -> 64: PairHistory::f_damp (the previous damping force, trapezoidal damping work,
     // theory eq. 6.10), saved since format 4
-    // 64 -> 72: PairHistory::d0 (birth depth of a self pair, theory eq. 9.24), saved since
+    // 64 -> 72: PairHistory::d0 (birth depth of a self pair, theory eq. 9.25), saved since
     // format 9
     EXPECT_EQ(sizeof(PairHistory), 72u) << "PairHistory changed: update io/checkpoint.cpp";
     EXPECT_EQ(sizeof(LegacyCouple), 56u) << "LegacyCouple changed: update io/checkpoint.cpp";
