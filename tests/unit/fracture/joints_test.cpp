@@ -1,5 +1,5 @@
-// The joint kernel (docs/theory.md §9; spec fracture.md §2, §3, §5, §6, tests U1, U3, U4, U8, V1, V2
-// at the level of one joint driven kinematically). Expected numbers come from the spec's
+// The joint kernel (docs/theory.md §9; spec fracture.md §2, §3, §5, §6, tests U1, U3, U4, U8, V1,
+// V2 at the level of one joint driven kinematically). Expected numbers come from the spec's
 // formulas written out here.
 #include "fracture/joints.hpp"
 
