@@ -24,6 +24,19 @@ struct PairHistory {
     /// born, then min(d0, d); 0 for pairs of two bodies [m]
     Real d0 = 0;
     int8_t unloading = 0;  ///< literal law: 1 while on the unloading branch
+    /// contactor sub-triangle of the last evaluation, counted from the body's first
+    /// (ContactTopology::body_sub_begin); -1 before the first. Bodies with fracture continue
+    /// the law depth where it changes (theory eq. 9.27)
+    int32_t sub = -1;
+};
+
+/// A pair's law depth d - d0 at x^n under the contact topology before this step's breaks
+/// (theory eq. 9.26): what the rebuilt topology's pair continues from.
+struct RebaseEntry {
+    NodeId node = kNone;  ///< target node (id in the rebuilt topology)
+    BodyId body = kNone;  ///< contactor body
+    Real d_law = 0;       ///< d - d0 of the old topology at x^n [m]
+    Real normal = 0;      ///< its normal potential scale k_n psi (released if the pair ends) [J/m]
 };
 
 /// One active contact (in contact at the last evaluation), sorted by (node, body).
@@ -116,7 +129,13 @@ struct ContactState {
     std::vector<ActiveContact> active;
     std::vector<ActiveContact> active_next;
     std::vector<PairResult> pair_out;  ///< per candidate pair, scratch (see PairResult)
-    std::vector<BodyBox> body_box;     ///< per body, scratch of add_contact_forces()
+    /// energy continuity through a rebuild of the contact topology (theory eq. 9.26): written
+    /// by rebuild_contact_topology() (probe of the old topology at x^n, sorted by (node, body)),
+    /// read and cleared by the next add_contact_forces() of the same step; never saved
+    std::vector<RebaseEntry> rebase;
+    std::vector<uint8_t> rebase_body;  ///< per body: 1 if its topology was rebuilt this step
+    bool rebase_pending = false;
+    std::vector<BodyBox> body_box;  ///< per body, scratch of add_contact_forces()
     /// false: no body-box reject (every box infinite), for the tests that compare the narrow
     /// phase with and without it; not saved in checkpoints
     bool box_reject = true;

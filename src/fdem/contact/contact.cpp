@@ -123,6 +123,17 @@ inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f
         add_real_force(ct, s, ct.virt_parent[v][k], ct.virt_weight[v][k] * f);
 }
 
+// the old topology's law depth of pair (j, c) at this step's positions (theory eq. 9.26), or
+// nullptr if the old topology did not locate it; cs.rebase is sorted by (node, body)
+inline const RebaseEntry* find_rebase(const ContactState& cs, NodeId j, BodyId c) {
+    const auto it =
+        std::lower_bound(cs.rebase.begin(), cs.rebase.end(), std::pair{j, c},
+                         [](const RebaseEntry& a, std::pair<NodeId, BodyId> k) {
+                             return a.node < k.first || (a.node == k.first && a.body < k.second);
+                         });
+    return it != cs.rebase.end() && it->node == j && it->body == c ? &*it : nullptr;
+}
+
 // ContactState::xw sized for the topology (no weld: empty)
 void size_weld_positions(const ContactTopology& ct, ContactState& cs) {
     if (ct.welded()) {
@@ -185,15 +196,21 @@ void init_contact_state(const Model& m, State& s) {
     cs.active_next.reserve(2 * nb + 16);
 }
 
+namespace {
+void probe_law_depths(const Model& m, State& s, std::span<const BodyId> dirty);
+}  // namespace
+
 void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> dirty) {
     ContactState& cs = s.contact;
     const NodeId old_base = s.topology.edge_target_base;
     const std::vector<std::array<NodeId, 2>> old_edges = s.topology.boundary_edges;
+    const bool smooth = m.contact.algorithm != ContactAlgorithm::None &&
+                        m.contact.algorithm != ContactAlgorithm::LegacyTriangle;
+    // the law depths of the old topology at x^n, for eq. 9.26 (before it is replaced)
+    if (smooth) probe_law_depths(m, s, dirty);
     rebuild_topology(m, dirty, s.node_sector, s.topology);
     const ContactTopology& ct = s.topology;
-    if (m.contact.algorithm == ContactAlgorithm::None ||
-        m.contact.algorithm == ContactAlgorithm::LegacyTriangle)
-        return;
+    if (!smooth) return;
     const size_t nv = static_cast<size_t>(ct.num_virtual());
     cs.xv.assign(nv, Vec2{});
     cs.vv.assign(nv, Vec2{});
@@ -207,23 +224,35 @@ void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> 
         for (size_t e = 0; e < ct.boundary_edges.size(); ++e)
             by_nodes.emplace_back(ct.boundary_edges[e], static_cast<int32_t>(e));
         std::sort(by_nodes.begin(), by_nodes.end());
+        // the new id of old target id t, or kNone
+        auto new_id = [&](NodeId t) {
+            if (t < old_base) return t;
+            const auto& e = old_edges[static_cast<size_t>(t - old_base)];
+            const auto it =
+                std::lower_bound(by_nodes.begin(), by_nodes.end(), std::pair{e, int32_t{-1}});
+            if (it == by_nodes.end() || it->first != e) return NodeId{kNone};  // (not expected)
+            return ct.edge_target_base + it->second;
+        };
+        auto by_key = [](const auto& a, const auto& b) {
+            return a.node < b.node || (a.node == b.node && a.body < b.body);
+        };
         size_t kept = 0;
         for (ActiveContact& a : cs.active) {
-            if (a.node >= old_base) {
-                const auto& e = old_edges[static_cast<size_t>(a.node - old_base)];
-                const auto it =
-                    std::lower_bound(by_nodes.begin(), by_nodes.end(), std::pair{e, int32_t{-1}});
-                if (it == by_nodes.end() || it->first != e) continue;  // (not expected)
-                a.node = ct.edge_target_base + it->second;
-            }
-            cs.active[kept++] = a;
+            a.node = new_id(a.node);
+            if (a.node != kNone) cs.active[kept++] = a;
         }
         cs.active.resize(kept);
-        std::sort(cs.active.begin(), cs.active.end(),
-                  [](const ActiveContact& a, const ActiveContact& b) {
-                      return a.node < b.node || (a.node == b.node && a.body < b.body);
-                  });
+        std::sort(cs.active.begin(), cs.active.end(), by_key);
+        kept = 0;
+        for (RebaseEntry& r : cs.rebase) {
+            r.node = new_id(r.node);
+            if (r.node != kNone) cs.rebase[kept++] = r;
+        }
+        cs.rebase.resize(kept);
     }
+    std::sort(cs.rebase.begin(), cs.rebase.end(), [](const RebaseEntry& a, const RebaseEntry& b) {
+        return a.node < b.node || (a.node == b.node && a.body < b.body);
+    });
     cs.need_rebuild = true;
 }
 
@@ -439,9 +468,10 @@ namespace {
 // (vertices pb, barycentric coordinates N). Out of line, so that the locate loop that every pair
 // runs stays small (no FieldSample set-up per pair).
 [[gnu::noinline]] int32_t contact_at(const Model& m, const ContactTopology& ct,
-                                     const ContactState& cs, const Vec2* v, const Vec2* vv, Real dt,
-                                     NodeId j, BodyId c, int32_t best, const Real N[3],
-                                     const Vec2 pb[3], PairResult& out) {
+                                     const ContactState& cs, const Vec2* xc, const Vec2* xv,
+                                     const Vec2* v, const Vec2* vv, Real dt, NodeId j, Vec2 xj,
+                                     BodyId c, int32_t best, const Real N[3], const Vec2 pb[3],
+                                     PairResult& out) {
     const ContactModel& cm = m.contact;
     FieldSample fs;
     fs.N[0] = N[0];
@@ -475,12 +505,42 @@ namespace {
     // which a break's rebuild, or the node's own-sector triangles it came from, revealed rather
     // than a motion against the field made; d0 only falls, to d, where the law's force and
     // potential are zero. Pairs of two bodies keep d0 = 0 (the law sees d, bitwise).
-    if (!has_hist) {
+    // Through a rebuild of the topology of c or of the target's body (eq. 9.26) every pair
+    // continues from the law depth the old topology gives at the same positions x^n (0 if the
+    // old one did not locate it): the rebuild changes the field, not the pair's energy.
+    if (cs.rebase_pending && (cs.rebase_body[static_cast<size_t>(c)] != 0 ||
+                              cs.rebase_body[static_cast<size_t>(bt)] != 0)) {
+        const RebaseEntry* e = find_rebase(cs, j, c);
+        out.h.d0 = fs.d - (e != nullptr ? e->d_law : 0.0);
+    } else if (!has_hist) {
         if (c == bt) out.h.d0 = fs.d;
-    } else if (out.h.d0 > fs.d) {
-        out.h.d0 = fs.d;
+    } else {
+        // A body with fracture: where the pair moves to another sub-triangle, the law depth
+        // continues from the one the last sub-triangle's field (extended linearly) gives at x_j
+        // (eq. 9.27). Across a crack the two faces' fields disagree; a target in the overlap of
+        // their triangles would otherwise jump between them with no work done. Where the field
+        // is C0 (intact body) the two agree but for the kink's O(motion of a step).
+        const int32_t nsub = ct.body_sub_begin[static_cast<size_t>(c) + 1] -
+                             ct.body_sub_begin[static_cast<size_t>(c)];
+        const int32_t sub_now = best - ct.body_sub_begin[static_cast<size_t>(c)];
+        if (!ct.body_self.empty() && ct.body_self[static_cast<size_t>(c)] != 0 && out.h.sub >= 0 &&
+            out.h.sub < nsub && out.h.sub != sub_now) {
+            const int32_t old = ct.body_sub_begin[static_cast<size_t>(c)] + out.h.sub;
+            const auto& qo = ct.sub_tri[old];
+            const Vec2 po[3] = {cpos(ct, xc, xv, qo[0]), cpos(ct, xc, xv, qo[1]),
+                                cpos(ct, xc, xv, qo[2])};
+            FieldSample fo;
+            if (barycentric(po[0], po[1], po[2], xj, fo.N)) {
+                const Real dist_o[3] = {ct.node_dist[qo[0]], ct.node_dist[qo[1]],
+                                        ct.node_dist[qo[2]]};
+                evaluate_field(cm.algorithm, ct, old, po, dist_o, fo);
+                out.h.d0 += fs.d - fo.d;
+            }
+        }
+        if (out.h.d0 > fs.d) out.h.d0 = fs.d;
     }
-    const Real d_law = out.h.d0 > 0 ? fs.d - out.h.d0 : fs.d;
+    out.h.sub = best - ct.body_sub_begin[static_cast<size_t>(c)];
+    const Real d_law = out.h.d0 != 0 ? fs.d - out.h.d0 : fs.d;
     const LawResult r =
         contact_law(p, d_law, fs.grad, vc - target_point(ct, v, j), scale, dt, out.h);
 
@@ -543,7 +603,49 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
         }
     }
     if (best < 0) return -1;
-    return contact_at(m, ct, cs, v, vv, dt, j, cs.cand.body[pr], best, bN, pb, out);
+    return contact_at(m, ct, cs, xc, xv, v, vv, dt, j, xj, cs.cand.body[pr], best, bN, pb, out);
+}
+
+// Theory eq. 9.26: before a rebuild of the bodies `dirty`, the law depth d - d0 (and the
+// normal potential) that the old topology gives every pair touching them at the positions x^n
+// of this step, into cs.rebase (sorted by (node, body)); rebase_body flags those bodies and
+// rebase_pending makes the next add_contact_forces() continue every such pair from it. The
+// broad phase runs on the old topology first (the candidates of the last one may not cover
+// x^n); the rebuild sets need_rebuild, so the next contact pass runs it again on the new one.
+// Serial, allocates: steps with breaks only.
+void probe_law_depths(const Model& m, State& s, std::span<const BodyId> dirty) {
+    const ContactTopology& ct = s.topology;
+    ContactState& cs = s.contact;
+    cs.rebase.clear();
+    cs.rebase_body.assign(static_cast<size_t>(m.num_bodies()), 0);
+    for (const BodyId b : dirty)
+        cs.rebase_body[static_cast<size_t>(b)] = 1;
+    cs.rebase_pending = false;  // the probe itself evaluates with the rules of the old topology
+    if (ct.num_sub_tris() > 0) {
+        update_virtual_nodes(m, s);
+        const Vec2* x = s.x.data();
+        const Vec2* xc = ct.welded() ? cs.xw.data() : x;
+        find_candidates(m, ct, x, xc, cs.xv.data(), cs.cand, cs.broad);
+        const int32_t npairs = static_cast<int32_t>(cs.cand.node.size());
+        PairResult out;
+        for (int32_t pr = 0; pr < npairs; ++pr) {
+            const NodeId j = cs.cand.node[pr];
+            const BodyId c = cs.cand.body[pr];
+            const BodyId bt = m.node_body[target_node(ct, j)];
+            if (cs.rebase_body[static_cast<size_t>(c)] == 0 &&
+                cs.rebase_body[static_cast<size_t>(bt)] == 0)
+                continue;
+            if (evaluate_pair(m, ct, cs, x, xc, s.v.data(), cs.xv.data(), cs.vv.data(), s.dt, pr,
+                              out) < 0)
+                continue;
+            const ContactParams& p =
+                pair_parameters(m.contact, m.bodies[c].material, m.bodies[bt].material);
+            const Real spring =
+                target_scale(ct, j) * 0.5 * p.tangential_penalty * out.h.s * out.h.s;
+            cs.rebase.push_back(RebaseEntry{j, c, out.h.d_prev, out.stored - spring});
+        }
+    }
+    cs.rebase_pending = true;
 }
 
 }  // namespace
@@ -559,6 +661,7 @@ void add_contact_forces(const Model& m, State& s) {
     cs.lost_depth_ratio = 0;
     cs.max_depth_ratio = 0;
     if (cm.algorithm == ContactAlgorithm::None || ct.num_sub_tris() == 0) {
+        cs.rebase_pending = false;
         s.energy.contact = 0;
         cs.active_contacts = 0;
         return;
@@ -688,7 +791,18 @@ void add_contact_forces(const Model& m, State& s) {
                 cs.lost_depth_ratio = a.h.depth_ratio;
             }
         }
-        dissipated += release_energy(p, a.h, scale, lost, dt);
+        if (cs.rebase_pending && (cs.rebase_body[static_cast<size_t>(a.body)] != 0 ||
+                                  cs.rebase_body[static_cast<size_t>(bt)] != 0)) {
+            // ended by a rebuild (eq. 9.26): the normal potential the old topology gives it at
+            // x^n leaves the books here, with its spring and damping as at any separation
+            const RebaseEntry* e = find_rebase(cs, a.node, a.body);
+            dissipated +=
+                (e != nullptr ? e->normal : 0.0) + release_energy(p, a.h, scale, false, dt);
+            return;
+        }
+        // a pair continued with d0 < 0 (eq. 9.26) separates at d = 0 with d - d0 > 0: its
+        // normal potential leaves the books as that of a lost pair
+        dissipated += release_energy(p, a.h, scale, lost || a.h.d0 < 0, dt);
     };
     // only the pairs in contact, in ascending pair order: an active pair that is a candidate
     // but not in contact is released at the same place of the merged order as before (by the
@@ -722,6 +836,10 @@ void add_contact_forces(const Model& m, State& s) {
     while (ia < cs.active.size())
         release(cs.active[ia++]);
     std::swap(cs.active, cs.active_next);
+    if (cs.rebase_pending) {  // consumed (eq. 9.26); keeps its capacity
+        cs.rebase.clear();
+        cs.rebase_pending = false;
+    }
 
     s.energy.contact = stored;
     s.energy.dissipated_contact += dissipated;

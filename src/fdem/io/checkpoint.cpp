@@ -99,6 +99,7 @@ void put(Sink& o, const PairHistory& h) {
     put(o, h.depth_ratio);
     put(o, h.d0);
     put(o, h.unloading);
+    put(o, h.sub);
 }
 
 template <class Sink>
@@ -293,6 +294,7 @@ public:
             get(v.depth_ratio);
             get(v.d0);
             get(v.unloading);
+            get(v.sub);
         } else if constexpr (std::is_same_v<T, ActiveContact>) {
             get(v.node);
             get(v.body);

@@ -30,14 +30,15 @@
 namespace fdem {
 
 /// Version of the checkpoint layout; bump it whenever the payload changes.
-constexpr uint32_t kCheckpointFormat = 9;  // 2: baseline A couples (ContactState::legacy)
-                                           // 3: Energy::work_external_pending
-                                           // 4: PairHistory::f_damp
-                                           // 5: RunProgress::impulses (bodies.csv)
-                                           // 6: State::bc_velocity, bc_enabled (controls)
-                                           // 7: Energy::joint, fracture (issue #14)
-                                           // 8: JointState history (State::joints)
-                                           // 9: PairHistory::d0 (birth depth, eq. 9.25)
+constexpr uint32_t kCheckpointFormat = 10;  // 2: baseline A couples (ContactState::legacy)
+                                            // 3: Energy::work_external_pending
+                                            // 4: PairHistory::f_damp
+                                            // 5: RunProgress::impulses (bodies.csv)
+                                            // 6: State::bc_velocity, bc_enabled (controls)
+                                            // 7: Energy::joint, fracture (issue #14)
+                                            // 8: JointState history (State::joints)
+                                            // 9: PairHistory::d0 (birth depth, eq. 9.25)
+                                            // 10: PairHistory::sub (eq. 9.27)
 
 /// CLI bookkeeping that must survive a restart so output continues where it stopped.
 struct RunProgress {

@@ -261,6 +261,8 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // theory eq. 6.10), saved since format 4
     // 64 -> 72: PairHistory::d0 (birth depth of a self pair, theory eq. 9.25), saved since
     // format 9
+    // 72: PairHistory::sub (the last located sub-triangle, theory eq. 9.27) fills the padding
+    // after unloading, saved since format 10
     EXPECT_EQ(sizeof(PairHistory), 72u) << "PairHistory changed: update io/checkpoint.cpp";
     EXPECT_EQ(sizeof(LegacyCouple), 56u) << "LegacyCouple changed: update io/checkpoint.cpp";
     EXPECT_EQ(sizeof(LegacyTriangleState), 320u)
@@ -274,7 +276,10 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // ContactState::cand / ::broad unchanged
     // 824 -> 848: ContactState::xw, the welded contactor positions of the step (theory eq.
     // 6.23; rewritten from x by every contact evaluation before it is read, not saved)
-    EXPECT_EQ(sizeof(ContactState), 848u) << "ContactState changed: update io/checkpoint.cpp";
+    // 848 -> 904: ContactState::rebase, rebase_body, rebase_pending (theory eq. 9.26: the old
+    // topology's law depths, written by a break's rebuild and consumed by the contact pass of
+    // the same step; empty or false between steps, not saved)
+    EXPECT_EQ(sizeof(ContactState), 904u) << "ContactState changed: update io/checkpoint.cpp";
     // 1048 -> 1072: State::scratch_load (the load forces of the current step, rewritten at the
     // start of every step from x^n; not saved)
     // 1072 -> 1096: State::bc_reaction (the supports' reactions of the last step, rewritten by
@@ -293,7 +298,8 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // 2224 -> 2368: ContactState 824 -> 848 above; ContactTopology::weld_group,
     // weld_group_begin, weld_copy, weld_share, weld_plain (theory eq. 6.23): part of
     // State::topology, not saved
-    EXPECT_EQ(sizeof(State), 2368u) << "State changed: update io/checkpoint.cpp";
+    // 2368 -> 2424: ContactState 848 -> 904 above
+    EXPECT_EQ(sizeof(State), 2424u) << "State changed: update io/checkpoint.cpp";
 }
 
 // Loads (theory §4.1): the half of the load work that belongs after t^n travels in
