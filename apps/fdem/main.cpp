@@ -138,7 +138,10 @@ void print_fracture(const fdem::Scenario& sc) {
                 break;
         }
         const double E = mat.youngs_modulus;
-        const double e_eff = fdem::joint_effective_modulus(E, p);  // eq. 9.6
+        // eq. 9.6 with c_m = 3/2 + p/(2 p_s) (theory §9.2: a vertical and a diagonal joint per
+        // cell width of the structured mesh; 2 for p_s = p)
+        const double c_m = 1.5 + 0.5 * p / jm.shear_penalty;
+        const double e_eff = fdem::joint_effective_modulus(E, p, c_m);
         fmt::print(
             "fracture   material \"{}\": {} joints, h {:.4g} .. {:.4g} m (mean {:.4g} m), "
             "h_max {:.4g} m (eq. 9.14){}\n",
@@ -149,9 +152,9 @@ void print_fracture(const fdem::Scenario& sc) {
             "{:.4g} m (\"{}\", eq. 9.12); penalty {:.4g} Pa, shear {:.4g} Pa\n",
             o_p, s_p, soft, rule, p, jm.shear_penalty);
         fmt::print(
-            "           l_ch = E G_I/f_t^2 = {:.4g} m; E_eff = E/(1 + 2E/p) = {:.4g} Pa = "
-            "{:.3f} E (eq. 9.6, structured mesh)\n",
-            E * GI / (ft * ft), e_eff, e_eff / E);
+            "           l_ch = E G_I/f_t^2 = {:.4g} m; E_eff = E/(1 + c_m E/p) = {:.4g} Pa = "
+            "{:.3f} E, c_m = 3/2 + p/(2 p_s) = {:.4g} (eq. 9.6, structured mesh)\n",
+            E * GI / (ft * ft), e_eff, e_eff / E, c_m);
     }
     const double dt_e = fdem::element_stable_time_step(m);
     const double dt_j = fdem::joint_critical_dt(J, m.node_mass);  // eq. 9.16
