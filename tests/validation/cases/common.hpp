@@ -119,6 +119,36 @@ struct Table {
 };
 
 /// Distance from p to the segment [a, b] [m] (the exact distance of the field maps).
+/// x as TOML text with all its digits (%.17g)
+inline std::string number(double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.17g", x);
+    return b;
+}
+
+/// The jointed rock of the fracture cases V1-V3, V7 (examples 07's, docs/scenario.md): the
+/// [[material]] "rock" and its [material.fracture] table with the joint penalty `penalty` and,
+/// when not empty, `shear_penalty` (TOML values as text: "\"auto\"" or a number).
+inline std::string jointed_rock_toml(const std::string& penalty,
+                                     const std::string& shear_penalty = "") {
+    std::string t = R"([[material]]
+name = "rock"
+density = 2700.0
+youngs_modulus = 5.0e10
+poisson_ratio = 0.0
+
+[material.fracture]
+tensile_strength = 1.0e7
+cohesion = 3.0e7
+friction_angle = 30.0
+fracture_energy_I = 50.0
+fracture_energy_II = 250.0
+penalty = )" + penalty +
+                    "\n";
+    if (!shear_penalty.empty()) t += "shear_penalty = " + shear_penalty + "\n";
+    return t;
+}
+
 inline double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
     const Vec2 ab = b - a;
     double t = dot(p - a, ab) / norm2(ab);

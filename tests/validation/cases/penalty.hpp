@@ -51,28 +51,16 @@ inline std::string penalty_text(const std::string& mesh, double p_over_e, double
 end_time = %.17g
 dt = "auto"
 
-[[material]]
-name = "rock"
-density = 2700.0
-youngs_modulus = 5.0e10
-poisson_ratio = 0.0
-
-[material.fracture]
-tensile_strength = 1.0e7
-cohesion = 3.0e7
-friction_angle = 30.0
-fracture_energy_I = 50.0
-fracture_energy_II = 250.0
-penalty = %.17g
-shear_penalty = %.17g
-
+%s
 [[body]]
 name = "square"
 mesh = "%s"
 mesh_size = 0.002
 material = "rock"
 )",
-                  end_time, p_over_e * 5e10, p_over_e * 5e10, mesh.c_str());
+                  end_time,
+                  jointed_rock_toml(number(p_over_e * 5e10), number(p_over_e * 5e10)).c_str(),
+                  mesh.c_str());
     std::string t = b;
     if (sigma > 0) {
         std::snprintf(b, sizeof b, R"(

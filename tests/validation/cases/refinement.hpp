@@ -49,20 +49,7 @@ inline RefinementRun run_refinement(int alg, double h) {
 end_time = 0.016
 dt = "auto"
 
-[[material]]
-name = "rock"
-density = 2700.0
-youngs_modulus = 5.0e10
-poisson_ratio = 0.0
-
-[material.fracture]
-tensile_strength = 1.0e7
-cohesion = 3.0e7
-friction_angle = 30.0
-fracture_energy_I = 50.0
-fracture_energy_II = 250.0
-penalty = "auto"
-
+%s
 [[body]]
 name = "blocks"
 mesh = "refinement_%d.geo"
@@ -80,7 +67,7 @@ body = "blocks"
 group = "top"
 velocity = [%.17g, %.17g]
 )",
-                  alg, h, v * nrm.x, v * nrm.y);
+                  jointed_rock_toml("\"auto\"").c_str(), alg, h, v * nrm.x, v * nrm.y);
     const Scenario sc = load_scenario_from_string(
         b, "refinement.toml", std::string(FDEM_SOURCE_DIR) + "/tests/validation/data");
     const Model& m = sc.model;

@@ -62,21 +62,7 @@ inline std::string shear_dir() {
 /// The scenario text of V2 (a) (sigma_n = 0) or (b) (sigma_n < 0) at grip speed v [m/s].
 inline std::string shear_text(double sigma_n, double v, double end_time, double ramp) {
     char b[4096];
-    const char* common = R"(
-[[material]]
-name = "rock"
-density = 2700.0
-youngs_modulus = 5.0e10
-poisson_ratio = 0.0
-
-[material.fracture]
-tensile_strength = 1.0e7
-cohesion = 3.0e7
-friction_angle = 30.0
-fracture_energy_I = 50.0
-fracture_energy_II = 250.0
-penalty = "auto"
-
+    const std::string common_text = "\n" + jointed_rock_toml("\"auto\"") + R"(
 [[body]]
 name = "blocks"
 mesh = "shear_blocks.geo"
@@ -84,6 +70,7 @@ mesh_size = 0.004
 material = "rock"
 fracture_group = "joint"
 )";
+    const char* common = common_text.c_str();
     if (sigma_n == 0) {
         std::snprintf(b, sizeof b, R"([simulation]
 end_time = %.17g
