@@ -556,6 +556,82 @@ namespace {
     return best;
 }
 
+// Locate rule of a pair with history on a contactor with fracture (theory eq. 9.28): the last
+// sub-triangle while it still contains x_j; else, of the candidates that contain x_j, the one
+// whose field there is closest to the last sub-triangle's (extended linearly), ties to the larger
+// min N_i. Across a crack the faces' triangles overlap and their fields disagree: the rule of the
+// largest min N_i would switch faces inside the overlap, the force jumping to the other face's
+// gradient (often opposite); each such switch costs the trapezoid rule about |f| |dx| of energy.
+// A C0 neighbour (same face) agrees with the extended field and is kept. Returns the chosen
+// sub-triangle and rewrites N and pb; without history (or in a rebuild step of the pair's bodies,
+// whose sub-triangle ids changed) returns best unchanged.
+[[gnu::noinline]] int32_t coherent_locate(const Model& m, const ContactTopology& ct,
+                                          const ContactState& cs, const Vec2* xc, const Vec2* xv,
+                                          NodeId j, Vec2 xj, BodyId c, int32_t pr, int32_t best,
+                                          Real N[3], Vec2 pb[3]) {
+    const BodyId bt = m.node_body[target_node(ct, j)];
+    if (cs.rebase_pending && (cs.rebase_body[static_cast<size_t>(c)] != 0 ||
+                              cs.rebase_body[static_cast<size_t>(bt)] != 0))
+        return best;
+    const auto it =
+        std::lower_bound(cs.active.begin(), cs.active.end(), std::pair{j, c},
+                         [](const ActiveContact& a, std::pair<NodeId, BodyId> k) {
+                             return a.node < k.first || (a.node == k.first && a.body < k.second);
+                         });
+    if (it == cs.active.end() || it->node != j || it->body != c) return best;
+    const int32_t sb = ct.body_sub_begin[static_cast<size_t>(c)];
+    const int32_t nsub = ct.body_sub_begin[static_cast<size_t>(c) + 1] - sb;
+    if (it->h.sub < 0 || it->h.sub >= nsub || sb + it->h.sub == best) return best;
+    const int32_t last = sb + it->h.sub;
+    auto field_at = [&](int32_t t, Real Nt[3], Vec2 pt[3]) {
+        const auto& q = ct.sub_tri[t];
+        pt[0] = cpos(ct, xc, xv, q[0]);
+        pt[1] = cpos(ct, xc, xv, q[1]);
+        pt[2] = cpos(ct, xc, xv, q[2]);
+        FieldSample fs;
+        if (!barycentric(pt[0], pt[1], pt[2], xj, fs.N))
+            return std::numeric_limits<Real>::quiet_NaN();
+        const Real dist[3] = {ct.node_dist[q[0]], ct.node_dist[q[1]], ct.node_dist[q[2]]};
+        evaluate_field(m.contact.algorithm, ct, t, pt, dist, fs);
+        Nt[0] = fs.N[0];
+        Nt[1] = fs.N[1];
+        Nt[2] = fs.N[2];
+        return fs.d;
+    };
+    Real Nl[3];
+    Vec2 pl[3];
+    const Real d_last = field_at(last, Nl, pl);
+    if (!(d_last == d_last)) return best;  // degenerate: keep the plain rule
+    if (std::min({Nl[0], Nl[1], Nl[2]}) >= -kLocateEps) {
+        for (int k = 0; k < 3; ++k) {
+            N[k] = Nl[k];
+            pb[k] = pl[k];
+        }
+        return last;
+    }
+    int32_t pick = best;
+    Real pick_gap = std::numeric_limits<Real>::infinity(), pick_min = -kLocateEps;
+    for (int32_t k = cs.cand.begin[pr]; k < cs.cand.begin[pr + 1]; ++k) {
+        const int32_t t = cs.cand.tri[k];
+        Real Nt[3];
+        Vec2 pt[3];
+        const Real d = field_at(t, Nt, pt);
+        const Real mn = std::min({Nt[0], Nt[1], Nt[2]});
+        if (!(d == d) || mn < -kLocateEps) continue;
+        const Real gap = std::abs(d - d_last);
+        if (gap < pick_gap || (gap == pick_gap && mn >= pick_min)) {
+            pick = t;
+            pick_gap = gap;
+            pick_min = mn;
+            for (int i = 0; i < 3; ++i) {
+                N[i] = Nt[i];
+                pb[i] = pt[i];
+            }
+        }
+    }
+    return pick;
+}
+
 // Narrow phase and law of candidate pair pr (spec §4.5-1 to -7): reads positions, velocities
 // and the previous history (looked up in cs.active, sorted by (node, body)); returns the located
 // sub-triangle, or -1 when the pair is not in contact, and writes out only in contact.
@@ -603,7 +679,10 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
         }
     }
     if (best < 0) return -1;
-    return contact_at(m, ct, cs, xc, xv, v, vv, dt, j, xj, cs.cand.body[pr], best, bN, pb, out);
+    const BodyId c = cs.cand.body[pr];
+    if (!ct.body_self.empty() && ct.body_self[static_cast<size_t>(c)] != 0)
+        best = coherent_locate(m, ct, cs, xc, xv, j, xj, c, pr, best, bN, pb);
+    return contact_at(m, ct, cs, xc, xv, v, vv, dt, j, xj, c, best, bN, pb, out);
 }
 
 // Theory eq. 9.26: before a rebuild of the bodies `dirty`, the law depth d - d0 (and the

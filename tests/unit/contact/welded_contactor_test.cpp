@@ -111,9 +111,10 @@ Sample probe_at(const Scene& sc, State& s, Vec2 p) {
 // (the bound of the trapezoid error where the force has a kink: a continuous, piecewise smooth E
 // stays below 1; a jump of E does not shrink with the step).
 struct PathResult {
-    Real worst = 0;    // the ratio above
-    Real e_max = 0;    // largest energy on the path
-    int contacts = 0;  // samples in contact
+    Real worst = 0;     // the ratio above
+    Real e_max = 0;     // largest energy on the path
+    int contacts = 0;   // samples in contact
+    int reversals = 0;  // neighbouring samples whose forces point against each other
 };
 
 PathResult walk(const Scene& sc, State& s, Vec2 a, Vec2 b, int n) {
@@ -135,6 +136,8 @@ PathResult walk(const Scene& sc, State& s, Vec2 a, Vec2 b, int n) {
         const Real miss = std::abs(smp[k + 1].energy - smp[k].energy + work);
         r.worst = std::max(r.worst, miss / (f_max * h));
     }
+    for (int k = 0; k < n; ++k)
+        r.reversals += dot(smp[k].f, smp[k + 1].f) < 0 ? 1 : 0;
     return r;
 }
 
@@ -326,6 +329,7 @@ TEST(WeldedContactor, RebuildContinuesTheLawDepth) {
 TEST(WeldedContactor, SubTriangleChangeAcrossACrackChangesNoEnergy) {
     const Scene sc = make_scene(true);
     Real afresh_worst = 0;
+    int reversals = 0, afresh_reversals = 0;
     for (const auto& path : paths()) {
         State s = make_state(sc.m, 1e-6);
         break_all(sc, s);
@@ -353,6 +357,8 @@ TEST(WeldedContactor, SubTriangleChangeAcrossACrackChangesNoEnergy) {
         }
         EXPECT_LT(worst, 1.0) << "energy jump on the path (" << path[0].x << ", " << path[0].y
                               << ") -> (" << path[1].x << ", " << path[1].y << ")";
+        for (int k = 0; k < n; ++k)
+            reversals += dot(smp[k].f, smp[k + 1].f) < 0 ? 1 : 0;
         State fresh = make_state(sc.m, 1e-6);
         break_all(sc, fresh);
         fresh.contact.rebase_pending = false;
@@ -361,7 +367,14 @@ TEST(WeldedContactor, SubTriangleChangeAcrossACrackChangesNoEnergy) {
         std::printf("path (%.3f, %.3f) -> (%.3f, %.3f): keeping the history %.3g, afresh %.3g\n",
                     path[0].x, path[0].y, path[1].x, path[1].y, worst, r.worst);
         afresh_worst = std::max(afresh_worst, r.worst);
+        afresh_reversals += r.reversals;
     }
+    // eq. 9.28: a pair with history keeps its sub-triangle while it contains the target and else
+    // takes the candidate whose field continues the last one's, so the force flips to the other
+    // face's gradient far less often than with the plain rule (measured 13 against 28 reversals)
+    std::printf("force reversals between neighbouring samples: %d keeping the history, %d afresh\n",
+                reversals, afresh_reversals);
+    EXPECT_LE(2 * reversals, afresh_reversals);
     // (measured: afresh 5 and 88 on the paths through the vertex's overlaps, 0.3 on the others)
     EXPECT_GT(afresh_worst, 20.0) << "the faces' fields must disagree, or the test shows nothing";
 }
