@@ -464,98 +464,6 @@ void body_boxes(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyBo
 
 namespace {
 
-// The rare part of evaluate_pair: field and law of a pair whose node lies in sub-triangle best
-// (vertices pb, barycentric coordinates N). Out of line, so that the locate loop that every pair
-// runs stays small (no FieldSample set-up per pair).
-[[gnu::noinline]] int32_t contact_at(const Model& m, const ContactTopology& ct,
-                                     const ContactState& cs, const Vec2* xc, const Vec2* xv,
-                                     const Vec2* v, const Vec2* vv, Real dt, NodeId j, Vec2 xj,
-                                     BodyId c, int32_t best, const Real N[3], const Vec2 pb[3],
-                                     PairResult& out) {
-    const ContactModel& cm = m.contact;
-    FieldSample fs;
-    fs.N[0] = N[0];
-    fs.N[1] = N[1];
-    fs.N[2] = N[2];
-    const auto& q = ct.sub_tri[best];
-    const Real dist[3] = {ct.node_dist[q[0]], ct.node_dist[q[1]], ct.node_dist[q[2]]};
-    evaluate_field(cm.algorithm, ct, best, pb, dist, fs);
-    if (!(fs.d > 0)) return -1;
-
-    // history of the pair: binary search in the previous active list (only pairs in contact
-    // come here, a few per thousand candidates)
-    const auto it =
-        std::lower_bound(cs.active.begin(), cs.active.end(), std::pair{j, c},
-                         [](const ActiveContact& a, std::pair<NodeId, BodyId> k) {
-                             return a.node < k.first || (a.node == k.first && a.body < k.second);
-                         });
-    const bool has_hist = it != cs.active.end() && it->node == j && it->body == c;
-    out.hist = has_hist ? static_cast<int32_t>(it - cs.active.begin()) : -1;
-
-    // the law (eqs. 5-19) with v_r = v_c - v_j, v_c = sum N_i v_i (eq. 13)
-    const BodyId bt = m.node_body[target_node(ct, j)];
-    const ContactParams& p = pair_parameters(cm, m.bodies[c].material, m.bodies[bt].material);
-    const Real scale = target_scale(ct, j);  // m_j / mbar (eq. 19), l_j / lbar, or eq. 6.19
-    Vec2 vc;                                 // (welded contactor: sector-mean velocities, eq. 6.23)
-    for (int k = 0; k < 3; ++k)
-        vc += fs.N[k] *
-              (q[k] < ct.num_real_nodes ? weld_mean(ct, v, q[k]) : vv[q[k] - ct.num_real_nodes]);
-    out.h = has_hist ? it->h : PairHistory{};
-    // birth depth (theory eq. 9.25): a self pair (rule X) starts from the depth it is found at,
-    // which a break's rebuild, or the node's own-sector triangles it came from, revealed rather
-    // than a motion against the field made; d0 only falls, to d, where the law's force and
-    // potential are zero. Pairs of two bodies keep d0 = 0 (the law sees d, bitwise).
-    // Through a rebuild of the topology of c or of the target's body (eq. 9.26) every pair
-    // continues from the law depth the old topology gives at the same positions x^n (0 if the
-    // old one did not locate it): the rebuild changes the field, not the pair's energy.
-    if (cs.rebase_pending && (cs.rebase_body[static_cast<size_t>(c)] != 0 ||
-                              cs.rebase_body[static_cast<size_t>(bt)] != 0)) {
-        const RebaseEntry* e = find_rebase(cs, j, c);
-        out.h.d0 = fs.d - (e != nullptr ? e->d_law : 0.0);
-    } else if (!has_hist) {
-        if (c == bt) out.h.d0 = fs.d;
-    } else {
-        // A body with fracture: where the pair moves to another sub-triangle, the law depth
-        // continues from the one the last sub-triangle's field (extended linearly) gives at x_j
-        // (eq. 9.27). Across a crack the two faces' fields disagree; a target in the overlap of
-        // their triangles would otherwise jump between them with no work done. Where the field
-        // is C0 (intact body) the two agree but for the kink's O(motion of a step).
-        const int32_t nsub = ct.body_sub_begin[static_cast<size_t>(c) + 1] -
-                             ct.body_sub_begin[static_cast<size_t>(c)];
-        const int32_t sub_now = best - ct.body_sub_begin[static_cast<size_t>(c)];
-        if (!ct.body_self.empty() && ct.body_self[static_cast<size_t>(c)] != 0 && out.h.sub >= 0 &&
-            out.h.sub < nsub && out.h.sub != sub_now) {
-            const int32_t old = ct.body_sub_begin[static_cast<size_t>(c)] + out.h.sub;
-            const auto& qo = ct.sub_tri[old];
-            const Vec2 po[3] = {cpos(ct, xc, xv, qo[0]), cpos(ct, xc, xv, qo[1]),
-                                cpos(ct, xc, xv, qo[2])};
-            FieldSample fo;
-            if (barycentric(po[0], po[1], po[2], xj, fo.N)) {
-                const Real dist_o[3] = {ct.node_dist[qo[0]], ct.node_dist[qo[1]],
-                                        ct.node_dist[qo[2]]};
-                evaluate_field(cm.algorithm, ct, old, po, dist_o, fo);
-                out.h.d0 += fs.d - fo.d;
-            }
-        }
-        if (out.h.d0 > fs.d) out.h.d0 = fs.d;
-    }
-    out.h.sub = best - ct.body_sub_begin[static_cast<size_t>(c)];
-    const Real d_law = out.h.d0 != 0 ? fs.d - out.h.d0 : fs.d;
-    const LawResult r =
-        contact_law(p, d_law, fs.grad, vc - target_point(ct, v, j), scale, dt, out.h);
-
-    // depth diagnostics: d relative to the local layer thickness
-    out.h.depth_ratio = fs.layer > 0 ? fs.d / fs.layer : 1.0;
-    out.tri = best;
-    out.N[0] = fs.N[0];
-    out.N[1] = fs.N[1];
-    out.N[2] = fs.N[2];
-    out.f = r.f;
-    out.stored = r.stored;
-    out.dissipated = r.dissipated;
-    return best;
-}
-
 // Locate rule of a pair with history on a contactor with fracture (theory eq. 9.28): the last
 // sub-triangle while it still contains x_j; else, of the candidates that contain x_j, the one
 // whose field there is closest to the last sub-triangle's (extended linearly), ties to the larger
@@ -632,6 +540,114 @@ namespace {
     return pick;
 }
 
+// The rare part of evaluate_pair: field and law of a pair whose node lies in sub-triangle best
+// (vertices pb, barycentric coordinates N). Out of line, so that the locate loop that every pair
+// runs stays small (no FieldSample set-up per pair).
+[[gnu::noinline]] int32_t contact_at(const Model& m, const ContactTopology& ct,
+                                     const ContactState& cs, const Vec2* xc, const Vec2* xv,
+                                     const Vec2* v, const Vec2* vv, Real dt, NodeId j, Vec2 xj,
+                                     BodyId c, int32_t pr, int32_t best, const Real N_in[3],
+                                     const Vec2 pb_in[3], PairResult& out) {
+    const ContactModel& cm = m.contact;
+    // a contactor with fracture: the locate rule of a pair with history (eq. 9.28)
+    const bool frac = !ct.body_self.empty() && ct.body_self[static_cast<size_t>(c)] != 0;
+    Real Nf[3];
+    Vec2 pf[3];
+    const Real* N = N_in;
+    const Vec2* pb = pb_in;
+    if (frac) {
+        for (int k = 0; k < 3; ++k) {
+            Nf[k] = N_in[k];
+            pf[k] = pb_in[k];
+        }
+        best = coherent_locate(m, ct, cs, xc, xv, j, xj, c, pr, best, Nf, pf);
+        N = Nf;
+        pb = pf;
+    }
+    FieldSample fs;
+    fs.N[0] = N[0];
+    fs.N[1] = N[1];
+    fs.N[2] = N[2];
+    const auto& q = ct.sub_tri[best];
+    const Real dist[3] = {ct.node_dist[q[0]], ct.node_dist[q[1]], ct.node_dist[q[2]]};
+    evaluate_field(cm.algorithm, ct, best, pb, dist, fs);
+    if (!(fs.d > 0)) return -1;
+
+    // history of the pair: binary search in the previous active list (only pairs in contact
+    // come here, a few per thousand candidates)
+    const auto it =
+        std::lower_bound(cs.active.begin(), cs.active.end(), std::pair{j, c},
+                         [](const ActiveContact& a, std::pair<NodeId, BodyId> k) {
+                             return a.node < k.first || (a.node == k.first && a.body < k.second);
+                         });
+    const bool has_hist = it != cs.active.end() && it->node == j && it->body == c;
+    out.hist = has_hist ? static_cast<int32_t>(it - cs.active.begin()) : -1;
+
+    // the law (eqs. 5-19) with v_r = v_c - v_j, v_c = sum N_i v_i (eq. 13)
+    const BodyId bt = m.node_body[target_node(ct, j)];
+    const ContactParams& p = pair_parameters(cm, m.bodies[c].material, m.bodies[bt].material);
+    const Real scale = target_scale(ct, j);  // m_j / mbar (eq. 19), l_j / lbar, or eq. 6.19
+    Vec2 vc;                                 // (welded contactor: sector-mean velocities, eq. 6.23)
+    for (int k = 0; k < 3; ++k)
+        vc += fs.N[k] *
+              (q[k] < ct.num_real_nodes ? weld_mean(ct, v, q[k]) : vv[q[k] - ct.num_real_nodes]);
+    out.h = has_hist ? it->h : PairHistory{};
+    // birth depth (theory eq. 9.25): a self pair (rule X) starts from the depth it is found at,
+    // which a break's rebuild, or the node's own-sector triangles it came from, revealed rather
+    // than a motion against the field made; d0 only falls, to d, where the law's force and
+    // potential are zero. Pairs of two bodies keep d0 = 0 (the law sees d, bitwise).
+    // Through a rebuild of the topology of c or of the target's body (eq. 9.26) every pair
+    // continues from the law depth the old topology gives at the same positions x^n (0 if the
+    // old one did not locate it): the rebuild changes the field, not the pair's energy.
+    if (cs.rebase_pending && (cs.rebase_body[static_cast<size_t>(c)] != 0 ||
+                              cs.rebase_body[static_cast<size_t>(bt)] != 0)) {
+        const RebaseEntry* e = find_rebase(cs, j, c);
+        out.h.d0 = fs.d - (e != nullptr ? e->d_law : 0.0);
+    } else if (!has_hist) {
+        if (c == bt) out.h.d0 = fs.d;
+    } else {
+        // A body with fracture: where the pair moves to another sub-triangle, the law depth
+        // continues from the one the last sub-triangle's field (extended linearly) gives at x_j
+        // (eq. 9.27). Across a crack the two faces' fields disagree; a target in the overlap of
+        // their triangles would otherwise jump between them with no work done. Where the field
+        // is C0 (intact body) the two agree but for the kink's O(motion of a step).
+        if (frac) {
+            const int32_t sb = ct.body_sub_begin[static_cast<size_t>(c)];
+            const int32_t nsub = ct.body_sub_begin[static_cast<size_t>(c) + 1] - sb;
+            if (out.h.sub >= 0 && out.h.sub < nsub && out.h.sub != best - sb) {
+                const int32_t old = sb + out.h.sub;
+                const auto& qo = ct.sub_tri[old];
+                const Vec2 po[3] = {cpos(ct, xc, xv, qo[0]), cpos(ct, xc, xv, qo[1]),
+                                    cpos(ct, xc, xv, qo[2])};
+                FieldSample fo;
+                if (barycentric(po[0], po[1], po[2], xj, fo.N)) {
+                    const Real dist_o[3] = {ct.node_dist[qo[0]], ct.node_dist[qo[1]],
+                                            ct.node_dist[qo[2]]};
+                    evaluate_field(cm.algorithm, ct, old, po, dist_o, fo);
+                    out.h.d0 += fs.d - fo.d;
+                }
+            }
+        }
+        if (out.h.d0 > fs.d) out.h.d0 = fs.d;
+    }
+    // (read by eqs. 9.27-9.28 of contactors with fracture only; -1 for the others)
+    if (frac) out.h.sub = best - ct.body_sub_begin[static_cast<size_t>(c)];
+    const Real d_law = out.h.d0 != 0 ? fs.d - out.h.d0 : fs.d;
+    const LawResult r =
+        contact_law(p, d_law, fs.grad, vc - target_point(ct, v, j), scale, dt, out.h);
+
+    // depth diagnostics: d relative to the local layer thickness
+    out.h.depth_ratio = fs.layer > 0 ? fs.d / fs.layer : 1.0;
+    out.tri = best;
+    out.N[0] = fs.N[0];
+    out.N[1] = fs.N[1];
+    out.N[2] = fs.N[2];
+    out.f = r.f;
+    out.stored = r.stored;
+    out.dissipated = r.dissipated;
+    return best;
+}
+
 // Narrow phase and law of candidate pair pr (spec §4.5-1 to -7): reads positions, velocities
 // and the previous history (looked up in cs.active, sorted by (node, body)); returns the located
 // sub-triangle, or -1 when the pair is not in contact, and writes out only in contact.
@@ -679,10 +695,7 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
         }
     }
     if (best < 0) return -1;
-    const BodyId c = cs.cand.body[pr];
-    if (!ct.body_self.empty() && ct.body_self[static_cast<size_t>(c)] != 0)
-        best = coherent_locate(m, ct, cs, xc, xv, j, xj, c, pr, best, bN, pb);
-    return contact_at(m, ct, cs, xc, xv, v, vv, dt, j, xj, c, best, bN, pb, out);
+    return contact_at(m, ct, cs, xc, xv, v, vv, dt, j, xj, cs.cand.body[pr], pr, best, bN, pb, out);
 }
 
 // Theory eq. 9.26: before a rebuild of the bodies `dirty`, the law depth d - d0 (and the
