@@ -21,9 +21,11 @@ def test_main_thread_runs_while_run_is_busy():
     elapsed = time.perf_counter() - t0
     worker.join()
     assert sim.step_count == steps
-    # with the GIL held by run(), the loop above would not run until run() returned: 1-2 ticks
+    # with the GIL held by run(), the loop above would not run until run() returned: 1-2 ticks.
+    # Not a rate: on a loaded 2-core machine (ctest -j2 beside it) a 2 ms sleep can take 10-50
+    # ms, and the former bound (a quarter of the ideal rate) failed twice under load 12-17
     assert elapsed > 0.1, "run too short to tell"
-    assert ticks >= 0.25 * elapsed / 0.002, (ticks, elapsed)
+    assert ticks >= 10, (ticks, elapsed)
 
 
 def test_request_stop_from_another_thread():
