@@ -123,15 +123,27 @@ inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f
         add_real_force(ct, s, ct.virt_parent[v][k], ct.virt_weight[v][k] * f);
 }
 
-// the old topology's law depth of pair (j, c) at this step's positions (theory eq. 9.26), or
-// nullptr if the old topology did not locate it; cs.rebase is sorted by (node, body)
-inline const RebaseEntry* find_rebase(const ContactState& cs, NodeId j, BodyId c) {
-    const auto it =
-        std::lower_bound(cs.rebase.begin(), cs.rebase.end(), std::pair{j, c},
-                         [](const RebaseEntry& a, std::pair<NodeId, BodyId> k) {
-                             return a.node < k.first || (a.node == k.first && a.body < k.second);
-                         });
-    return it != cs.rebase.end() && it->node == j && it->body == c ? &*it : nullptr;
+// the order of the per-pair lists (ContactState::active, rebase): by (target node, contactor body)
+template <class T>
+inline bool pair_key_less(const T& a, const T& b) {
+    return a.node < b.node || (a.node == b.node && a.body < b.body);
+}
+
+// the entry of pair (j, c) in a list sorted by pair_key_less (the pair history in cs.active, the
+// old topology's law depth in cs.rebase), or nullptr
+template <class T>
+inline const T* find_pair(const std::vector<T>& list, NodeId j, BodyId c) {
+    const auto it = std::lower_bound(
+        list.begin(), list.end(), std::pair{j, c}, [](const T& a, std::pair<NodeId, BodyId> k) {
+            return a.node < k.first || (a.node == k.first && a.body < k.second);
+        });
+    return it != list.end() && it->node == j && it->body == c ? &*it : nullptr;
+}
+
+// does a pair of contactor c and target body bt continue from cs.rebase in this step (eq. 9.26)?
+inline bool rebased(const ContactState& cs, BodyId c, BodyId bt) {
+    return cs.rebase_pending && (cs.rebase_body[static_cast<size_t>(c)] != 0 ||
+                                 cs.rebase_body[static_cast<size_t>(bt)] != 0);
 }
 
 // ContactState::xw sized for the topology (no weld: empty)
@@ -233,16 +245,13 @@ void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> 
             if (it == by_nodes.end() || it->first != e) return NodeId{kNone};  // (not expected)
             return ct.edge_target_base + it->second;
         };
-        auto by_key = [](const auto& a, const auto& b) {
-            return a.node < b.node || (a.node == b.node && a.body < b.body);
-        };
         size_t kept = 0;
         for (ActiveContact& a : cs.active) {
             a.node = new_id(a.node);
             if (a.node != kNone) cs.active[kept++] = a;
         }
         cs.active.resize(kept);
-        std::sort(cs.active.begin(), cs.active.end(), by_key);
+        std::sort(cs.active.begin(), cs.active.end(), pair_key_less<ActiveContact>);
         kept = 0;
         for (RebaseEntry& r : cs.rebase) {
             r.node = new_id(r.node);
@@ -250,9 +259,7 @@ void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> 
         }
         cs.rebase.resize(kept);
     }
-    std::sort(cs.rebase.begin(), cs.rebase.end(), [](const RebaseEntry& a, const RebaseEntry& b) {
-        return a.node < b.node || (a.node == b.node && a.body < b.body);
-    });
+    std::sort(cs.rebase.begin(), cs.rebase.end(), pair_key_less<RebaseEntry>);
     cs.need_rebuild = true;
 }
 
@@ -464,6 +471,22 @@ void body_boxes(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyBo
 
 namespace {
 
+// The field of contactor sub-triangle t at x (eq. 3), extended linearly beyond t: its
+// barycentric coordinates N (negative outside t) and vertices pt; NaN for a degenerate t.
+Real extended_field(const Model& m, const ContactTopology& ct, const Vec2* xc, const Vec2* xv,
+                    int32_t t, Vec2 x, Real N[3], Vec2 pt[3]) {
+    const auto& q = ct.sub_tri[t];
+    for (int k = 0; k < 3; ++k)
+        pt[k] = cpos(ct, xc, xv, q[k]);
+    FieldSample fs;
+    if (!barycentric(pt[0], pt[1], pt[2], x, fs.N)) return std::numeric_limits<Real>::quiet_NaN();
+    const Real dist[3] = {ct.node_dist[q[0]], ct.node_dist[q[1]], ct.node_dist[q[2]]};
+    evaluate_field(m.contact.algorithm, ct, t, pt, dist, fs);
+    for (int k = 0; k < 3; ++k)
+        N[k] = fs.N[k];
+    return fs.d;
+}
+
 // Locate rule of a pair with history on a contactor with fracture (theory eq. 9.28): the last
 // sub-triangle while it still contains x_j; else, of the candidates that contain x_j, the one
 // whose field there is closest to the last sub-triangle's (extended linearly), ties to the larger
@@ -472,44 +495,23 @@ namespace {
 // gradient (often opposite); each such switch costs the trapezoid rule about |f| |dx| of energy.
 // A C0 neighbour (same face) agrees with the extended field and is kept. Returns the chosen
 // sub-triangle and rewrites N and pb; without history (or in a rebuild step of the pair's bodies,
-// whose sub-triangle ids changed) returns best unchanged.
+// whose sub-triangle ids changed) returns best unchanged. Where it moves the pair away from its
+// last sub-triangle, d_last is that sub-triangle's field at x_j (what eq. 9.27 continues from);
+// NaN otherwise.
 [[gnu::noinline]] int32_t coherent_locate(const Model& m, const ContactTopology& ct,
                                           const ContactState& cs, const Vec2* xc, const Vec2* xv,
-                                          NodeId j, Vec2 xj, BodyId c, int32_t pr, int32_t best,
-                                          Real N[3], Vec2 pb[3]) {
-    const BodyId bt = m.node_body[target_node(ct, j)];
-    if (cs.rebase_pending && (cs.rebase_body[static_cast<size_t>(c)] != 0 ||
-                              cs.rebase_body[static_cast<size_t>(bt)] != 0))
-        return best;
-    const auto it =
-        std::lower_bound(cs.active.begin(), cs.active.end(), std::pair{j, c},
-                         [](const ActiveContact& a, std::pair<NodeId, BodyId> k) {
-                             return a.node < k.first || (a.node == k.first && a.body < k.second);
-                         });
-    if (it == cs.active.end() || it->node != j || it->body != c) return best;
+                                          const ActiveContact* hist, Vec2 xj, BodyId c, int32_t pr,
+                                          int32_t best, Real N[3], Vec2 pb[3], Real& d_last) {
+    d_last = std::numeric_limits<Real>::quiet_NaN();
+    if (hist == nullptr) return best;
     const int32_t sb = ct.body_sub_begin[static_cast<size_t>(c)];
     const int32_t nsub = ct.body_sub_begin[static_cast<size_t>(c) + 1] - sb;
-    if (it->h.sub < 0 || it->h.sub >= nsub || sb + it->h.sub == best) return best;
-    const int32_t last = sb + it->h.sub;
-    auto field_at = [&](int32_t t, Real Nt[3], Vec2 pt[3]) {
-        const auto& q = ct.sub_tri[t];
-        pt[0] = cpos(ct, xc, xv, q[0]);
-        pt[1] = cpos(ct, xc, xv, q[1]);
-        pt[2] = cpos(ct, xc, xv, q[2]);
-        FieldSample fs;
-        if (!barycentric(pt[0], pt[1], pt[2], xj, fs.N))
-            return std::numeric_limits<Real>::quiet_NaN();
-        const Real dist[3] = {ct.node_dist[q[0]], ct.node_dist[q[1]], ct.node_dist[q[2]]};
-        evaluate_field(m.contact.algorithm, ct, t, pt, dist, fs);
-        Nt[0] = fs.N[0];
-        Nt[1] = fs.N[1];
-        Nt[2] = fs.N[2];
-        return fs.d;
-    };
+    if (hist->h.sub < 0 || hist->h.sub >= nsub || sb + hist->h.sub == best) return best;
+    const int32_t last = sb + hist->h.sub;
     Real Nl[3];
     Vec2 pl[3];
-    const Real d_last = field_at(last, Nl, pl);
-    if (!(d_last == d_last)) return best;  // degenerate: keep the plain rule
+    const Real dl = extended_field(m, ct, xc, xv, last, xj, Nl, pl);
+    if (!(dl == dl)) return best;  // degenerate: keep the plain rule
     if (std::min({Nl[0], Nl[1], Nl[2]}) >= -kLocateEps) {
         for (int k = 0; k < 3; ++k) {
             N[k] = Nl[k];
@@ -517,16 +519,18 @@ namespace {
         }
         return last;
     }
+    // (the last sub-triangle no longer contains x_j, so it is not picked below)
+    d_last = dl;
     int32_t pick = best;
     Real pick_gap = std::numeric_limits<Real>::infinity(), pick_min = -kLocateEps;
     for (int32_t k = cs.cand.begin[pr]; k < cs.cand.begin[pr + 1]; ++k) {
         const int32_t t = cs.cand.tri[k];
         Real Nt[3];
         Vec2 pt[3];
-        const Real d = field_at(t, Nt, pt);
+        const Real d = extended_field(m, ct, xc, xv, t, xj, Nt, pt);
         const Real mn = std::min({Nt[0], Nt[1], Nt[2]});
         if (!(d == d) || mn < -kLocateEps) continue;
-        const Real gap = std::abs(d - d_last);
+        const Real gap = std::abs(d - dl);
         if (gap < pick_gap || (gap == pick_gap && mn >= pick_min)) {
             pick = t;
             pick_gap = gap;
@@ -549,18 +553,24 @@ namespace {
                                      BodyId c, int32_t pr, int32_t best, const Real N_in[3],
                                      const Vec2 pb_in[3], PairResult& out) {
     const ContactModel& cm = m.contact;
-    // a contactor with fracture: the locate rule of a pair with history (eq. 9.28)
+    const BodyId bt = m.node_body[target_node(ct, j)];
+    // a contactor with fracture: the history first, for the locate rule of a pair with history
+    // (eq. 9.28; not in a rebuild step of the pair's bodies, whose sub-triangle ids changed)
     const bool frac = !ct.body_self.empty() && ct.body_self[static_cast<size_t>(c)] != 0;
+    const ActiveContact* hist = nullptr;
+    Real d_last = std::numeric_limits<Real>::quiet_NaN();  // eq. 9.27, set by coherent_locate()
     Real Nf[3];
     Vec2 pf[3];
     const Real* N = N_in;
     const Vec2* pb = pb_in;
     if (frac) {
+        hist = find_pair(cs.active, j, c);
         for (int k = 0; k < 3; ++k) {
             Nf[k] = N_in[k];
             pf[k] = pb_in[k];
         }
-        best = coherent_locate(m, ct, cs, xc, xv, j, xj, c, pr, best, Nf, pf);
+        if (!rebased(cs, c, bt))
+            best = coherent_locate(m, ct, cs, xc, xv, hist, xj, c, pr, best, Nf, pf, d_last);
         N = Nf;
         pb = pf;
     }
@@ -574,24 +584,19 @@ namespace {
     if (!(fs.d > 0)) return -1;
 
     // history of the pair: binary search in the previous active list (only pairs in contact
-    // come here, a few per thousand candidates)
-    const auto it =
-        std::lower_bound(cs.active.begin(), cs.active.end(), std::pair{j, c},
-                         [](const ActiveContact& a, std::pair<NodeId, BodyId> k) {
-                             return a.node < k.first || (a.node == k.first && a.body < k.second);
-                         });
-    const bool has_hist = it != cs.active.end() && it->node == j && it->body == c;
-    out.hist = has_hist ? static_cast<int32_t>(it - cs.active.begin()) : -1;
+    // come here, a few per thousand candidates; a contactor with fracture searched above)
+    if (!frac) hist = find_pair(cs.active, j, c);
+    const bool has_hist = hist != nullptr;
+    out.hist = has_hist ? static_cast<int32_t>(hist - cs.active.data()) : -1;
 
     // the law (eqs. 5-19) with v_r = v_c - v_j, v_c = sum N_i v_i (eq. 13)
-    const BodyId bt = m.node_body[target_node(ct, j)];
     const ContactParams& p = pair_parameters(cm, m.bodies[c].material, m.bodies[bt].material);
     const Real scale = target_scale(ct, j);  // m_j / mbar (eq. 19), l_j / lbar, or eq. 6.19
     Vec2 vc;                                 // (welded contactor: sector-mean velocities, eq. 6.23)
     for (int k = 0; k < 3; ++k)
         vc += fs.N[k] *
               (q[k] < ct.num_real_nodes ? weld_mean(ct, v, q[k]) : vv[q[k] - ct.num_real_nodes]);
-    out.h = has_hist ? it->h : PairHistory{};
+    out.h = has_hist ? hist->h : PairHistory{};
     // birth depth (theory eq. 9.25): a self pair (rule X) starts from the depth it is found at,
     // which a break's rebuild, or the node's own-sector triangles it came from, revealed rather
     // than a motion against the field made; d0 only falls, to d, where the law's force and
@@ -599,40 +604,24 @@ namespace {
     // Through a rebuild of the topology of c or of the target's body (eq. 9.26) every pair
     // continues from the law depth the old topology gives at the same positions x^n (0 if the
     // old one did not locate it): the rebuild changes the field, not the pair's energy.
-    if (cs.rebase_pending && (cs.rebase_body[static_cast<size_t>(c)] != 0 ||
-                              cs.rebase_body[static_cast<size_t>(bt)] != 0)) {
-        const RebaseEntry* e = find_rebase(cs, j, c);
+    if (rebased(cs, c, bt)) {
+        const RebaseEntry* e = find_pair(cs.rebase, j, c);
         out.h.d0 = fs.d - (e != nullptr ? e->d_law : 0.0);
     } else if (!has_hist) {
         if (c == bt) out.h.d0 = fs.d;
     } else {
         // A body with fracture: where the pair moves to another sub-triangle, the law depth
         // continues from the one the last sub-triangle's field (extended linearly) gives at x_j
-        // (eq. 9.27). Across a crack the two faces' fields disagree; a target in the overlap of
-        // their triangles would otherwise jump between them with no work done. Where the field
-        // is C0 (intact body) the two agree but for the kink's O(motion of a step).
-        if (frac) {
-            const int32_t sb = ct.body_sub_begin[static_cast<size_t>(c)];
-            const int32_t nsub = ct.body_sub_begin[static_cast<size_t>(c) + 1] - sb;
-            if (out.h.sub >= 0 && out.h.sub < nsub && out.h.sub != best - sb) {
-                const int32_t old = sb + out.h.sub;
-                const auto& qo = ct.sub_tri[old];
-                const Vec2 po[3] = {cpos(ct, xc, xv, qo[0]), cpos(ct, xc, xv, qo[1]),
-                                    cpos(ct, xc, xv, qo[2])};
-                FieldSample fo;
-                if (barycentric(po[0], po[1], po[2], xj, fo.N)) {
-                    const Real dist_o[3] = {ct.node_dist[qo[0]], ct.node_dist[qo[1]],
-                                            ct.node_dist[qo[2]]};
-                    evaluate_field(cm.algorithm, ct, old, po, dist_o, fo);
-                    out.h.d0 += fs.d - fo.d;
-                }
-            }
-        }
+        // (eq. 9.27; d_last from coherent_locate(), NaN where the sub-triangle did not change).
+        // Across a crack the two faces' fields disagree; a target in the overlap of their
+        // triangles would otherwise jump between them with no work done. Where the field is C0
+        // (intact body) the two agree but for the kink's O(motion of a step).
+        if (d_last == d_last) out.h.d0 += fs.d - d_last;
         if (out.h.d0 > fs.d) out.h.d0 = fs.d;
     }
     // (read by eqs. 9.27-9.28 of contactors with fracture only; -1 for the others)
     if (frac) out.h.sub = best - ct.body_sub_begin[static_cast<size_t>(c)];
-    const Real d_law = out.h.d0 != 0 ? fs.d - out.h.d0 : fs.d;
+    const Real d_law = fs.d - out.h.d0;  // (= d exactly where d0 = 0)
     const LawResult r =
         contact_law(p, d_law, fs.grad, vc - target_point(ct, v, j), scale, dt, out.h);
 
@@ -883,11 +872,10 @@ void add_contact_forces(const Model& m, State& s) {
                 cs.lost_depth_ratio = a.h.depth_ratio;
             }
         }
-        if (cs.rebase_pending && (cs.rebase_body[static_cast<size_t>(a.body)] != 0 ||
-                                  cs.rebase_body[static_cast<size_t>(bt)] != 0)) {
+        if (rebased(cs, a.body, bt)) {
             // ended by a rebuild (eq. 9.26): the normal potential the old topology gives it at
             // x^n leaves the books here, with its spring and damping as at any separation
-            const RebaseEntry* e = find_rebase(cs, a.node, a.body);
+            const RebaseEntry* e = find_pair(cs.rebase, a.node, a.body);
             dissipated +=
                 (e != nullptr ? e->normal : 0.0) + release_energy(p, a.h, scale, false, dt);
             return;
