@@ -122,13 +122,14 @@ struct ContactState {
     Candidates cand;          ///< written by the broad phase, read by the narrow phase
     BroadPhaseScratch broad;  ///< the broad phase's grid scratch
     /// scratch of the narrow phase: the candidate pairs in contact (ascending within each of
-    /// its fixed chunks of pairs; pair_out[p] is written only for those pairs)
+    /// its fixed chunks of pairs, at the front of the chunk's range; pair_out holds their
+    /// results at the same places)
     std::vector<int32_t> in_contact;
 
     // ---- pair history: ping-pong buffers, both sorted by (node, body) ----------------
     std::vector<ActiveContact> active;
     std::vector<ActiveContact> active_next;
-    std::vector<PairResult> pair_out;  ///< per candidate pair, scratch (see PairResult)
+    std::vector<PairResult> pair_out;  ///< as in_contact, scratch (see PairResult)
     /// energy continuity through a rebuild of the contact topology (theory eq. 9.26): written
     /// by rebuild_contact_topology() (probe of the old topology at x^n, sorted by (node, body)),
     /// read and cleared by the next add_contact_forces() of the same step; never saved

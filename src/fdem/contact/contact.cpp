@@ -819,9 +819,10 @@ void add_contact_forces(const Model& m, State& s) {
     }
 
     // 3a. narrow phase and law of every pair, independent of each other: in parallel into the
-    //     per-pair buffer pair_out (written only for pairs in contact); each of the kPairChunks
-    //     fixed chunks of pairs lists its pairs in contact, ascending, at the front of its range
-    //     of cs.in_contact. The body box rejects most pairs before any sub-triangle is touched
+    //     buffer pair_out; each of the kPairChunks fixed chunks of pairs lists its pairs in
+    //     contact, ascending, at the front of its range of cs.in_contact, and their results at
+    //     the same places of pair_out (dense: written in order, not at the pair's index, whose
+    //     scattered writes to a buffer of all candidates cost a cache miss each). The body box rejects most pairs before any sub-triangle is touched
     //     (exact: body_boxes()). Below kMinParallelPairs fork/join dominates.
     const int32_t npairs = static_cast<int32_t>(cs.cand.node.size());
     auto before = [](const ActiveContact& a, NodeId j, BodyId c) {
@@ -870,7 +871,7 @@ void add_contact_forces(const Model& m, State& s) {
                 size_t cursor = 0;
                 for (int32_t k = b; k < n; ++k) {
                     const int32_t pr = in_contact[k];
-                    if (evaluate_pair(m, ct, ccs, x, xc, v, xv, vv, dt, pr, out[pr], &cursor) >= 0)
+                    if (evaluate_pair(m, ct, ccs, x, xc, v, xv, vv, dt, pr, out[nc], &cursor) >= 0)
                         in_contact[nc++] = pr;
                 }
                 chunk_count[ch] = nc - b;
@@ -927,7 +928,7 @@ void add_contact_forces(const Model& m, State& s) {
             while (ia < cs.active.size() && before(cs.active[ia], j, c))
                 release(cs.active[ia++]);
             if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) ++ia;
-            const PairResult& o = out[pr];
+            const PairResult& o = out[k];
 
             // f on the target, -N_i f on the contactor (eq. 20)
             const auto& q = ct.sub_tri[o.tri];
