@@ -50,8 +50,12 @@ struct LawResult {
 /// Energy (theory §6.7): 'stored' is the energy the pair returns if it unloads now; the
 /// dissipated part is counted from exact state functions (hysteresis loop, return mapping) and
 /// from the damping force times the relative displacement dt v_r of the step.
-inline LawResult contact_law(const ContactParams& p, Real d, Vec2 grad, Vec2 v_r, Real scale,
-                             Real dt, PairHistory& h) {
+///
+/// Always inlined (issue #16): as a call, the two Vec2 arguments arrive in four registers, which
+/// GCC stores as doubles and reloads as pairs, a failed store-to-load forwarding each (~1/3 of
+/// the function's time on the saturated pack).
+[[gnu::always_inline]] inline LawResult contact_law(const ContactParams& p, Real d, Vec2 grad,
+                                                    Vec2 v_r, Real scale, Real dt, PairHistory& h) {
     LawResult r;
     const Real kn = p.penalty;
     const Real l = p.length_scale;
