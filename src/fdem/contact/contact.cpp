@@ -833,8 +833,11 @@ void add_contact_forces(const Model& m, State& s) {
         constexpr Real inf = std::numeric_limits<Real>::infinity();
         std::fill(cs.body_box.begin(), cs.body_box.end(), BodyBox{{-inf, -inf}, {inf, inf}});
     }
-    cs.pair_out.resize(static_cast<size_t>(npairs));
-    cs.in_contact.resize(static_cast<size_t>(npairs));
+    // grow only: a resize that shrinks and grows again value-initialises the regrown part
+    if (cs.pair_out.size() < static_cast<size_t>(npairs)) {
+        cs.pair_out.resize(static_cast<size_t>(npairs));
+        cs.in_contact.resize(static_cast<size_t>(npairs));
+    }
     PairResult* out = cs.pair_out.data();
     int32_t* in_contact = cs.in_contact.data();
     int32_t chunk_count[kPairChunks];
