@@ -298,6 +298,7 @@ void step_scene(benchmark::State& st, const Model& m, int warm_up, bool measure 
     st.counters["broad_per_step"] = rebuild_rate;
     st.counters["t_narrow"] = p.narrow;
     st.counters["pairs"] = static_cast<double>(p.pairs);
+    st.counters["cand_tris"] = static_cast<double>(p.cand_tris);  // locate tests of one pass
     st.counters["active"] = s.contact.active_contacts;
     // the in-contact pair: narrow-phase time per active contact (a (target, contactor body) pair
     // with a force), and the active contacts per body (saturation of a pack)

@@ -13,7 +13,8 @@ contact of examples 08/09: crack-face self-contact), --end-factor F (end time x 
 (default out/10_three_point_bending[_full]), --fdem PATH (default build/release/fdem),
 --threads N (default 1), --check (exit 1 when a spec V6 target is missed), --no-run
 (post-process existing runs), --validate DIR (write DIR/checks_bending.csv for scripts/validate),
---quick (what scripts/validate --quick and the CTest `validation` test run: D/l_ch = 5 to just
+--mesh-algorithm N (Gmsh's 2-D algorithm for the beam, e.g. 1, 5; default Gmsh's 6: other meshes
+of the same sizes, the "seeds" of the unstructured run), --quick (what scripts/validate --quick and the CTest `validation` test run: D/l_ch = 5 to just
 past the peak, end time x 0.3: P_max/P_LEFM, crack path, quasi-static, energy; no tail, so no
 work of fracture).
 
@@ -54,7 +55,7 @@ def sub1(pattern, repl, text, what):
     return text
 
 
-def make_run(out, ratio, h, aligned, contact, end_factor, band):
+def make_run(out, ratio, h, aligned, contact, end_factor, band, algorithm=None):
     """Write OUT/beam.geo and OUT/scenario_used.toml for D = ratio * l_ch; returns the scenario
     path. Times x D/D0, speeds x (D/D0)^-1/2, coarse mesh size x D/D0."""
     text = open(os.path.join(HERE, "scenario.toml")).read()
@@ -70,6 +71,8 @@ def make_run(out, ratio, h, aligned, contact, end_factor, band):
     geo = sub1(r"(?m)^aligned = [01];", f"aligned = {1 if aligned else 0};", geo,
                "beam.geo: aligned")
     geo = sub1(r"(?m)^band = [0-9.e+-]+;", f"band = {band!r};", geo, "beam.geo: band")
+    if algorithm is not None:  # another unstructured mesh of the same sizes (spec V7's "seeds")
+        geo += f"Mesh.Algorithm = {algorithm:d};\n"
     open(os.path.join(out, "beam.geo"), "w").write(geo)
     text = sub1(r'mesh = "beam\.geo"', f'mesh = "{os.path.join(out, "beam.geo")}"', text,
                 "scenario.toml: the beam's mesh")
@@ -160,6 +163,9 @@ def main():
     ap.add_argument("--contact", action="store_true")
     ap.add_argument("--band", type=float, default=0.25)
     ap.add_argument("--end-factor", type=float, default=1.0)
+    ap.add_argument("--mesh-algorithm", type=int, choices=[1, 2, 5, 6, 8],
+                    help="Gmsh's 2-D algorithm for beam.geo (default: Gmsh's, 6): another "
+                         "mesh of the same sizes, e.g. for the unstructured run's scatter")
     ap.add_argument("--out")
     ap.add_argument("--fdem", default="build/release/fdem")
     ap.add_argument("--threads", type=int, default=1)
@@ -188,10 +194,11 @@ def main():
 
     runs = []
     for ratio, aligned, band, end_factor in runs_spec:
-        name = f"D_lch_{ratio:g}" + ("" if aligned else "_unaligned")
+        name = f"D_lch_{ratio:g}" + ("" if aligned else "_unaligned") + (
+            f"_alg{a.mesh_algorithm}" if a.mesh_algorithm is not None else "")
         d = os.path.join(out, name)
         os.makedirs(d, exist_ok=True)
-        scen = make_run(d, ratio, a.h, aligned, a.contact, end_factor, band)
+        scen = make_run(d, ratio, a.h, aligned, a.contact, end_factor, band, a.mesh_algorithm)
         wall = None
         if not a.no_run:
             wall = labtest.run_fdem(a.fdem, scen, d, a.threads, what=name + ": ")
