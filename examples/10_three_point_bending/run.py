@@ -13,6 +13,7 @@ contact of examples 08/09: crack-face self-contact), --end-factor F (end time x 
 (default out/10_three_point_bending[_full]), --fdem PATH (default build/release/fdem),
 --threads N (default 1), --check (exit 1 when a spec V6 target is missed), --no-run
 (post-process existing runs), --validate DIR (write DIR/checks_bending.csv for scripts/validate),
+--fracture KEY=VALUE (override a key of the rock's [material.fracture], repeatable),
 --mesh-algorithm N (Gmsh's 2-D algorithm for the beam, e.g. 1, 5; default Gmsh's 6: other meshes
 of the same sizes, the "seeds" of the unstructured run), --quick (what scripts/validate --quick and the CTest `validation` test run: D/l_ch = 5 to just
 past the peak, end time x 0.3: P_max/P_LEFM, crack path, quasi-static, energy; no tail, so no
@@ -55,7 +56,7 @@ def sub1(pattern, repl, text, what):
     return text
 
 
-def make_run(out, ratio, h, aligned, contact, end_factor, band, algorithm=None):
+def make_run(out, ratio, h, aligned, contact, end_factor, band, algorithm=None, fracture=()):
     """Write OUT/beam.geo and OUT/scenario_used.toml for D = ratio * l_ch; returns the scenario
     path. Times x D/D0, speeds x (D/D0)^-1/2, coarse mesh size x D/D0."""
     text = open(os.path.join(HERE, "scenario.toml")).read()
@@ -86,6 +87,9 @@ def make_run(out, ratio, h, aligned, contact, end_factor, band, algorithm=None):
                   lambda m: f"{m.group(1)} = {float(m.group(2)) * k!r}", text)
     text = re.sub(r"(?m)^velocity = \[0\.0, (-[0-9.e+-]+)\]",
                   lambda m: f"velocity = [0.0, {float(m.group(1)) / math.sqrt(k)!r}]", text)
+    for key, value in fracture:  # --fracture KEY=VALUE: a key of the rock's [material.fracture]
+        text = sub1(rf"(?m)^{re.escape(key)} = [^#\n]*?(\s*#|$)", f"{key} = {value}\\1", text,
+                    f"scenario.toml: [material.fracture] {key}")
     if contact:
         text += ("\n[contact]\nalgorithm = \"smooth\"\nedge_targets = false\n"
                  "friction = 0.577\n")
@@ -163,6 +167,9 @@ def main():
     ap.add_argument("--contact", action="store_true")
     ap.add_argument("--band", type=float, default=0.25)
     ap.add_argument("--end-factor", type=float, default=1.0)
+    ap.add_argument("--fracture", action="append", default=[], metavar="KEY=VALUE",
+                    help="override a key of the rock's [material.fracture] (repeatable), e.g. "
+                         "fracture_energy_II=25.0")
     ap.add_argument("--mesh-algorithm", type=int, choices=[1, 2, 5, 6, 8],
                     help="Gmsh's 2-D algorithm for beam.geo (default: Gmsh's, 6): another "
                          "mesh of the same sizes, e.g. for the unstructured run's scatter")
@@ -174,6 +181,17 @@ def main():
     ap.add_argument("--validate", metavar="DIR",
                     help="also write DIR/checks_bending.csv for scripts/validate's report")
     a = ap.parse_args()
+    fracture = []
+    for item in a.fracture:
+        key, sep, value = item.partition("=")
+        if not sep or not re.fullmatch(r"[a-z_I]+", key) or not value:
+            ap.error(f"--fracture {item!r}: expected KEY=VALUE, e.g. fracture_energy_II=25.0")
+        base = tomllib.load(open(os.path.join(HERE, "scenario.toml"), "rb"))
+        keys = next(m for m in base["material"] if m["name"] == "rock")["fracture"]
+        if key not in keys:
+            ap.error(f"--fracture {item!r}: {key} is not a key of the rock's [material.fracture] "
+                     f"in scenario.toml ({', '.join(keys)})")
+        fracture.append((key, value))
     if a.quick:  # the CTest `validation` run: D/l_ch = 5 to just past the peak
         a.sizes = a.sizes or "5"
         a.end_factor = 0.3 if a.end_factor == 1.0 else a.end_factor
@@ -195,10 +213,12 @@ def main():
     runs = []
     for ratio, aligned, band, end_factor in runs_spec:
         name = f"D_lch_{ratio:g}" + ("" if aligned else "_unaligned") + (
-            f"_alg{a.mesh_algorithm}" if a.mesh_algorithm is not None else "")
+            f"_alg{a.mesh_algorithm}" if a.mesh_algorithm is not None else "") + "".join(
+            f"_{k}={v}" for k, v in fracture)
         d = os.path.join(out, name)
         os.makedirs(d, exist_ok=True)
-        scen = make_run(d, ratio, a.h, aligned, a.contact, end_factor, band, a.mesh_algorithm)
+        scen = make_run(d, ratio, a.h, aligned, a.contact, end_factor, band, a.mesh_algorithm,
+                        fracture)
         wall = None
         if not a.no_run:
             wall = labtest.run_fdem(a.fdem, scen, d, a.threads, what=name + ": ")
