@@ -331,6 +331,19 @@ BENCHMARK(BM_StepPackSaturated)
     ->ArgsProduct({{20000, 80000}, {1, 2}})
     ->Unit(benchmark::kMicrosecond);
 
+// The brick-bond pack of the issue #16 comparison with the reference code ("converging brick-bond
+// pack of two-triangle blocks, 20k / 80k triangles, once every gap has closed"; target >= 15 M
+// triangle-steps/s): the same pack with 1 mm gaps, neighbours closing at 0.5 m/s, so every gap
+// has closed at 2 ms; measured from 2.2 ms. Args: {triangles, threads}.
+void BM_StepPackBrickBond(benchmark::State& st) {
+    omp_set_num_threads(static_cast<int>(st.range(1)));
+    step_scene(st, bench::cached_saturated_pack(st.range(0), 0.5, 1e-3), 0, false, 2.2e-3);
+}
+
+BENCHMARK(BM_StepPackBrickBond)
+    ->ArgsProduct({{20000, 80000}, {1, 2}})
+    ->Unit(benchmark::kMicrosecond);
+
 // BM_StepPack plus Resultants::accumulate after every step (every node of a pack is a contact
 // node: the worst case of the measurement's per-step sums)
 void BM_StepPackResultants(benchmark::State& st) {

@@ -154,6 +154,55 @@ TEST(JointLaw, IntactPathSameBitsAsGeneral) {
     EXPECT_GT(outside, 1000);
 }
 
+// Work to break one point along a radial path (o, s) = delta (cos theta, sin theta), the law
+// integrated by the trapezoid rule, against theory eq. 9.29 (the tractions are capped per
+// component, sigma = f_t z(D), tau = f_s z(D), with D = sqrt(D_n^2 + D_s^2)):
+//   W(theta) = (f_t cos + f_s sin) / sqrt((f_t cos / G_I)^2 + (f_s sin / G_II)^2)
+// in the limit o_p, s_p -> 0 (here a penalty of 1e15 Pa: o_p / (o_r - o_p) ~ 1e-5). Pure modes
+// give G_I and G_II; a mixed path costs more than either mode's share: a joint inclined to the
+// opening of a mode-I crack pays this premium (example 10's unstructured beam, theory §9.8).
+TEST(JointLaw, MixedModeWorkOfARadialPath) {
+    struct Case {
+        Real ft, c, GI, GII;
+    };
+    // example 10's rock (f_s = 3 f_t, G_II = 5 G_I), and the same strengths and energies in both
+    // modes (the control runs of theory §9.8)
+    for (const Case k : {Case{1.0e7, 3.0e7, 25.0, 125.0}, Case{1.0e7, 1.0e7, 25.0, 25.0}}) {
+        JointMaterial m;
+        m.tensile_strength = k.ft;
+        m.cohesion = k.c;
+        m.friction_angle = 30.0 * M_PI / 180.0;
+        m.fracture_energy_I = k.GI;
+        m.fracture_energy_II = k.GII;
+        m.penalty = 1.0e15;
+        m.shear_penalty = 1.0e15;
+        const JointLaw L = make_joint_law(m);
+        const Real h = 1e-3;
+        for (const Real deg : {0.0, 10.0, 30.0, 60.0, 90.0}) {
+            const Real ca = std::cos(deg * M_PI / 180.0), sa = std::sin(deg * M_PI / 180.0);
+            const Real expected =
+                (k.ft * ca + k.c * sa) / std::hypot(k.ft * ca / k.GI, k.c * sa / k.GII);
+            // the point breaks (D = 1) at delta_c = 1 / sqrt((cos/dO)^2 + (sin/dS)^2),
+            // dO = G_I/(I_z f_t), dS = G_II/(I_z f_s) (eq. 9.12); integrate to 1.02 delta_c
+            const Real dO = k.GI / (L.Iz * k.ft), dS = k.GII / (L.Iz * k.c);
+            const Real delta_c = 1.0 / std::hypot(ca / dO, sa / dS);
+            const int n = 200000;
+            const Real step = 1.02 * delta_c / n;
+            Real dmax = 0, work = 0, f_last = 0;
+            for (int i = 0; i <= n; ++i) {
+                const Real d = i * step;
+                const JointPoint r = joint_point(L, h, 1.0 / h, d * ca, d * sa, dmax);
+                const Real f = r.sigma * ca + r.tau * sa;  // traction along the path
+                if (i > 0) work += 0.5 * (f + f_last) * step;
+                f_last = f;
+            }
+            SCOPED_TRACE(testing::Message() << "G_II/G_I " << k.GII / k.GI << ", theta " << deg);
+            EXPECT_NEAR(work / expected, 1.0, 5e-5);  // measured <= 1.1e-5
+            EXPECT_GE(dmax, 1.0);                     // broken at the end of the path
+        }
+    }
+}
+
 TEST(JointLaw, SofteningLengthRules) {
     JointMaterial m = granite();
     const double ft = 1e6, G = 100.0, op = 2e-6;
