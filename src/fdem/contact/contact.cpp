@@ -502,9 +502,11 @@ Real extended_field(const Model& m, const ContactTopology& ct, const Vec2* xc, c
     for (int k = 0; k < 3; ++k)
         pt[k] = cpos(ct, xc, xv, q[k]);
     FieldSample fs;
-    if (!barycentric(pt[0], pt[1], pt[2], x, fs.N)) return std::numeric_limits<Real>::quiet_NaN();
+    Real inv;
+    if (!barycentric(pt[0], pt[1], pt[2], x, fs.N, inv))
+        return std::numeric_limits<Real>::quiet_NaN();
     const Real dist[3] = {ct.node_dist[q[0]], ct.node_dist[q[1]], ct.node_dist[q[2]]};
-    evaluate_field(m.contact.algorithm, ct, t, pt, dist, fs);
+    evaluate_field(m.contact.algorithm, ct, t, pt, dist, inv, fs);
     for (int k = 0; k < 3; ++k)
         N[k] = fs.N[k];
     return fs.d;
@@ -574,7 +576,8 @@ Real extended_field(const Model& m, const ContactTopology& ct, const Vec2* xc, c
                                      const ContactState& cs, const Vec2* xc, const Vec2* xv,
                                      const Vec2* v, const Vec2* vv, Real dt, NodeId j, Vec2 xj,
                                      BodyId c, int32_t pr, int32_t best, const Real N_in[3],
-                                     const Vec2 pb_in[3], PairResult& out, size_t* cursor) {
+                                     const Vec2 pb_in[3], Real inv, PairResult& out,
+                                     size_t* cursor) {
     const ContactModel& cm = m.contact;
     const BodyId bt = m.node_body[target_node(ct, j)];
     // a contactor with fracture: the history first, for the locate rule of a pair with history
@@ -601,6 +604,7 @@ Real extended_field(const Model& m, const ContactTopology& ct, const Vec2* xc, c
             best = coherent_locate(m, ct, cs, xc, xv, hist, xj, c, pr, best, Nf, pf, d_last);
         N = Nf;
         pb = pf;
+        inv = inverse_double_area(pb[0], pb[1], pb[2]);  // (best may have changed)
     }
     FieldSample fs;
     fs.N[0] = N[0];
@@ -608,7 +612,7 @@ Real extended_field(const Model& m, const ContactTopology& ct, const Vec2* xc, c
     fs.N[2] = N[2];
     const auto& q = ct.sub_tri[best];
     const Real dist[3] = {ct.node_dist[q[0]], ct.node_dist[q[1]], ct.node_dist[q[2]]};
-    evaluate_field(cm.algorithm, ct, best, pb, dist, fs);
+    evaluate_field(cm.algorithm, ct, best, pb, dist, inv, fs);
     if (!(fs.d > 0)) return -1;
 
     // history of the pair in the previous active list (only pairs in contact come here, a few
@@ -684,7 +688,7 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
     const Vec2 xj = target_point(ct, x, j);
     int32_t best = -1;
     Real best_min = -kLocateEps;
-    Real bN[3];
+    Real bN[3], binv = 0;
     Vec2 pb[3];
     for (int32_t k = cs.cand.begin[pr]; k < cs.cand.begin[pr + 1]; ++k) {
         const auto& q = ct.sub_tri[cs.cand.tri[k]];
@@ -698,11 +702,13 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
         const Real lim = kRejectMargin * std::abs(a2);
         if (a2 > 0 ? std::min({c0, c1, c2}) < -lim : std::max({c0, c1, c2}) > lim) continue;
         Real N[3];
-        if (!barycentric(p[0], p[1], p[2], xj, N)) continue;
+        Real inv;
+        if (!barycentric(p[0], p[1], p[2], xj, N, inv)) continue;
         const Real mn = std::min({N[0], N[1], N[2]});
         if (mn >= best_min) {
             best_min = mn;
             best = cs.cand.tri[k];
+            binv = inv;
             bN[0] = N[0];
             bN[1] = N[1];
             bN[2] = N[2];
@@ -712,8 +718,8 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
         }
     }
     if (best < 0) return -1;
-    return contact_at(m, ct, cs, xc, xv, v, vv, dt, j, xj, cs.cand.body[pr], pr, best, bN, pb, out,
-                      cursor);
+    return contact_at(m, ct, cs, xc, xv, v, vv, dt, j, xj, cs.cand.body[pr], pr, best, bN, pb, binv,
+                      out, cursor);
 }
 
 // Theory eq. 9.26: before a rebuild of the bodies `dirty`, the law depth d - d0 (and the
@@ -822,8 +828,9 @@ void add_contact_forces(const Model& m, State& s) {
     //     buffer pair_out; each of the kPairChunks fixed chunks of pairs lists its pairs in
     //     contact, ascending, at the front of its range of cs.in_contact, and their results at
     //     the same places of pair_out (dense: written in order, not at the pair's index, whose
-    //     scattered writes to a buffer of all candidates cost a cache miss each). The body box rejects most pairs before any sub-triangle is touched
-    //     (exact: body_boxes()). Below kMinParallelPairs fork/join dominates.
+    //     scattered writes to a buffer of all candidates cost a cache miss each). The body box
+    //     rejects most pairs before any sub-triangle is touched (exact: body_boxes()). Below
+    //     kMinParallelPairs fork/join dominates.
     const int32_t npairs = static_cast<int32_t>(cs.cand.node.size());
     auto before = [](const ActiveContact& a, NodeId j, BodyId c) {
         return a.node < j || (a.node == j && a.body < c);
