@@ -160,13 +160,13 @@ TEST(JointLaw, IntactPathSameBitsAsGeneral) {
 //   W(theta) = (f_t cos + f_s sin) / sqrt((f_t cos / G_I)^2 + (f_s sin / G_II)^2)
 // in the limit o_p, s_p -> 0 (here a penalty of 1e15 Pa: o_p / (o_r - o_p) ~ 1e-5). Pure modes
 // give G_I and G_II; a mixed path costs more than either mode's share: a joint inclined to the
-// opening of a mode-I crack pays this premium (example 10's unstructured beam, theory §9.8).
+// opening of a mode-I crack pays this premium (example 10's unstructured beam, theory §9.3a).
 TEST(JointLaw, MixedModeWorkOfARadialPath) {
     struct Case {
         Real ft, c, GI, GII;
     };
     // example 10's rock (f_s = 3 f_t, G_II = 5 G_I), and the same strengths and energies in both
-    // modes (the control runs of theory §9.8)
+    // modes (the control runs of theory §9.3a)
     for (const Case k : {Case{1.0e7, 3.0e7, 25.0, 125.0}, Case{1.0e7, 1.0e7, 25.0, 25.0}}) {
         JointMaterial m;
         m.tensile_strength = k.ft;
