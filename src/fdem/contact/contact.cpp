@@ -123,20 +123,24 @@ inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f
         add_real_force(ct, s, ct.virt_parent[v][k], ct.virt_weight[v][k] * f);
 }
 
-// the order of the per-pair lists (ContactState::active, rebase): by (target node, contactor body)
+// the order of the per-pair lists (ContactState::active, rebase, the candidates): by (target
+// node, contactor body); pair_below: entry a comes before pair (j, c)
+template <class T>
+inline bool pair_below(const T& a, NodeId j, BodyId c) {
+    return a.node < j || (a.node == j && a.body < c);
+}
+
 template <class T>
 inline bool pair_key_less(const T& a, const T& b) {
-    return a.node < b.node || (a.node == b.node && a.body < b.body);
+    return pair_below(a, b.node, b.body);
 }
 
 // the entry of pair (j, c) in a list sorted by pair_key_less (the pair history in cs.active, the
 // old topology's law depth in cs.rebase), or nullptr
 template <class T>
 inline const T* find_pair(const std::vector<T>& list, NodeId j, BodyId c) {
-    const auto it = std::lower_bound(
-        list.begin(), list.end(), std::pair{j, c}, [](const T& a, std::pair<NodeId, BodyId> k) {
-            return a.node < k.first || (a.node == k.first && a.body < k.second);
-        });
+    const auto it = std::partition_point(list.begin(), list.end(),
+                                         [j, c](const T& a) { return pair_below(a, j, c); });
     return it != list.end() && it->node == j && it->body == c ? &*it : nullptr;
 }
 
@@ -150,7 +154,7 @@ template <class T>
 inline const T* find_pair_from(const std::vector<T>& list, size_t& at, NodeId j, BodyId c) {
     constexpr int kLinearSteps = 8;
     const size_t n = list.size();
-    const auto below = [j, c](const T& a) { return a.node < j || (a.node == j && a.body < c); };
+    const auto below = [j, c](const T& a) { return pair_below(a, j, c); };
     for (int k = 0; at < n && below(list[at]); ++k, ++at) {
         if (k == kLinearSteps) {
             at = static_cast<size_t>(
@@ -832,9 +836,6 @@ void add_contact_forces(const Model& m, State& s) {
     //     rejects most pairs before any sub-triangle is touched (exact: body_boxes()). Below
     //     kMinParallelPairs fork/join dominates.
     const int32_t npairs = static_cast<int32_t>(cs.cand.node.size());
-    auto before = [](const ActiveContact& a, NodeId j, BodyId c) {
-        return a.node < j || (a.node == j && a.body < c);
-    };
     cs.body_box.resize(static_cast<size_t>(m.num_bodies()));
     if (!cs.box_reject) {
         constexpr Real inf = std::numeric_limits<Real>::infinity();
@@ -935,7 +936,7 @@ void add_contact_forces(const Model& m, State& s) {
             const int32_t pr = in_contact[k];
             const NodeId j = cs.cand.node[pr];
             const BodyId c = cs.cand.body[pr];
-            while (ia < cs.active.size() && before(cs.active[ia], j, c))
+            while (ia < cs.active.size() && pair_below(cs.active[ia], j, c))
                 release(cs.active[ia++]);
             if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) ++ia;
             const PairResult& o = out[k];
