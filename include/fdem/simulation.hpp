@@ -124,8 +124,8 @@ public:
     /// frame and checkpoint are written at settings().end_time, not at `until`, so run(a);
     /// run(b) writes the same files as run(b). Energies are evaluated on the last step, on
     /// every 16th step and on output and checkpoint steps, and, with callback_reads_energy, on
-    /// every step the callback is called (otherwise energy.strain may be stale there; x, v and
-    /// the other energies are the same either way).
+    /// every step the callback is called (otherwise energy.strain, kinetic, work_gravity and the
+    /// joint energies may be stale there; x, v and the other energies are the same either way).
     /// Throws SimulationError (after writing failure.vtu when output is open); the state is
     /// then the failed one.
     RunResult run(Real until, const StepCallback& callback = {}, int64_t every = 1,

@@ -14,11 +14,14 @@ namespace fdem {
 /// Energy bookkeeping per unit thickness [J/m] (docs/theory.md §4, spec §3.5).
 /// Balance: kinetic + strain + contact - work_gravity - work_external + dissipated == const.
 struct Energy {
-    Real time = 0;           ///< t^n at which the energies below were evaluated [s]
-    Real kinetic = 0;        ///< sum 1/2 m |v^n|^2 with v^n = (v^{n-1/2} + v^{n+1/2})/2
-    Real strain = 0;         ///< sum A0 W(F) (stale when State::need_energy was false)
-    Real contact = 0;        ///< stored contact potential (path-independent part)
-    Real work_gravity = 0;   ///< work done by gravity since t = 0
+    Real time = 0;  ///< t^n at which the energies below were evaluated [s]
+    /// sum 1/2 m |v^n|^2 with v^n = (v^{n-1/2} + v^{n+1/2})/2 (stale when State::need_energy
+    /// was false)
+    Real kinetic = 0;
+    Real strain = 0;   ///< sum A0 W(F) (stale when State::need_energy was false)
+    Real contact = 0;  ///< stored contact potential (path-independent part)
+    /// work done by gravity since t = 0 (stale when State::need_energy was false)
+    Real work_gravity = 0;
     Real work_external = 0;  ///< work done by prescribed-velocity supports, kicks and loads
     /// the part of the last step's support and load work that belongs after t^n, booked next step
     Real work_external_pending = 0;
@@ -67,10 +70,12 @@ struct State {
     /// per-chunk partial sums of step()'s reductions, combined in chunk order (determinism)
     std::vector<Real> scratch_sums;
     int32_t next_kick = 0;  ///< index of the next VelocityKick to apply
-    /// Evaluate the strain energy (a std::log per triangle) in the next step(). When false,
-    /// energy.strain keeps the value of the last step that evaluated it (stale);
-    /// x, v and every other energy are bitwise the same either way. Callers that read the
-    /// energies only on output / check steps set it for those steps (docs/performance.md).
+    /// Evaluate the energies of state (strain: a std::log per triangle; kinetic and gravity
+    /// work: ordered sums over the nodes; the joints' E_joint and W_frac) in the next step().
+    /// When false, those keep the values of the last step that evaluated them (stale); x, v and
+    /// the integrated energies (work_external, dissipated_*) are bitwise the same either way.
+    /// Callers that read the energies only on output / check steps set it for those steps
+    /// (docs/performance.md).
     bool need_energy = true;
 
     /// Discrete fracture (docs/theory.md §9): per-joint history (damage, status, work), empty

@@ -38,9 +38,10 @@ namespace detail {
 /// Nodes [begin, end) with the AVX-512 kernel: the same per-node expressions as the portable
 /// loop in integrate/step.cpp (update_nodes), 8 nodes per instruction; the energy terms are then
 /// summed node by node in order into sums[0..2] (kinetic2, gravity work, damping power), so the
-/// sums have the same bits. Only call when the CPU has AVX-512F.
+/// sums have the same bits. Without `energy` sums[0] and sums[1] are 0 (not evaluated; the
+/// damping power always is: it is integrated every step). Only call when the CPU has AVX-512F.
 void node_block_avx512(const NodeArrays& a, const NodeUpdate& u, bool gravity, bool damped,
-                       int32_t begin, int32_t end, Real* sums);
+                       bool energy, int32_t begin, int32_t end, Real* sums);
 
 }  // namespace detail
 }  // namespace fdem

@@ -44,7 +44,7 @@ constexpr __mmask8 spread(unsigned m4) {
     return r;
 }
 
-template <bool kGravity, bool kDamped>
+template <bool kGravity, bool kDamped, bool kEnergy>
 FDEM_AVX512 void block(const NodeArrays& a, const NodeUpdate& u, int32_t begin, int32_t end,
                        Real* sums) {
     constexpr __mmask8 kSpread[16] = {spread(0),  spread(1),  spread(2),  spread(3),
@@ -90,9 +90,11 @@ FDEM_AVX512 void block(const NodeArrays& a, const NodeUpdate& u, int32_t begin, 
         // v^n (theory eq. 5.2)
         const __m512d nx = first ? vx : _mm512_mul_pd(half, _mm512_add_pd(vx, wx));
         const __m512d ny = first ? vy : _mm512_mul_pd(half, _mm512_add_pd(vy, wy));
-        _mm512_store_pd(
-            kin_t, _mm512_mul_pd(mi, _mm512_add_pd(_mm512_mul_pd(nx, nx), _mm512_mul_pd(ny, ny))));
-        if constexpr (kGravity) {
+        if constexpr (kEnergy) {
+            _mm512_store_pd(kin_t, _mm512_mul_pd(mi, _mm512_add_pd(_mm512_mul_pd(nx, nx),
+                                                                   _mm512_mul_pd(ny, ny))));
+        }
+        if constexpr (kGravity && kEnergy) {
             // work of gravity up to x^n: the exact potential change (theory eq. 4.2)
             __m512d x0x, x0y;
             load_vec2(x0d + o, lo, hi, x0x, x0y);
@@ -109,18 +111,20 @@ FDEM_AVX512 void block(const NodeArrays& a, const NodeUpdate& u, int32_t begin, 
                    _mm512_add_pd(xy, _mm512_mul_pd(dt, wy)));
 
         // sums in node order
-        if (active == 0xff) {
-            for (int i = 0; i < 8; ++i) {
-                kin += kin_t[i];
-                if constexpr (kGravity) grav += grav_t[i];
-                if constexpr (kDamped) damp += damp_t[i];
-            }
-        } else {
-            for (int i = 0; i < n; ++i) {
-                if (!(active & (1u << i))) continue;
-                kin += kin_t[i];
-                if constexpr (kGravity) grav += grav_t[i];
-                if constexpr (kDamped) damp += damp_t[i];
+        if constexpr (kEnergy || kDamped) {
+            if (active == 0xff) {
+                for (int i = 0; i < 8; ++i) {
+                    if constexpr (kEnergy) kin += kin_t[i];
+                    if constexpr (kGravity && kEnergy) grav += grav_t[i];
+                    if constexpr (kDamped) damp += damp_t[i];
+                }
+            } else {
+                for (int i = 0; i < n; ++i) {
+                    if (!(active & (1u << i))) continue;
+                    if constexpr (kEnergy) kin += kin_t[i];
+                    if constexpr (kGravity && kEnergy) grav += grav_t[i];
+                    if constexpr (kDamped) damp += damp_t[i];
+                }
             }
         }
     }
@@ -129,18 +133,28 @@ FDEM_AVX512 void block(const NodeArrays& a, const NodeUpdate& u, int32_t begin, 
     sums[2] = damp;
 }
 
+template <bool kEnergy>
+void dispatch(const NodeArrays& a, const NodeUpdate& u, bool gravity, bool damped, int32_t begin,
+              int32_t end, Real* sums) {
+    if (gravity && damped) {
+        block<true, true, kEnergy>(a, u, begin, end, sums);
+    } else if (gravity) {
+        block<true, false, kEnergy>(a, u, begin, end, sums);
+    } else if (damped) {
+        block<false, true, kEnergy>(a, u, begin, end, sums);
+    } else {
+        block<false, false, kEnergy>(a, u, begin, end, sums);
+    }
+}
+
 }  // namespace
 
 void node_block_avx512(const NodeArrays& a, const NodeUpdate& u, bool gravity, bool damped,
-                       int32_t begin, int32_t end, Real* sums) {
-    if (gravity && damped) {
-        block<true, true>(a, u, begin, end, sums);
-    } else if (gravity) {
-        block<true, false>(a, u, begin, end, sums);
-    } else if (damped) {
-        block<false, true>(a, u, begin, end, sums);
+                       bool energy, int32_t begin, int32_t end, Real* sums) {
+    if (energy) {
+        dispatch<true>(a, u, gravity, damped, begin, end, sums);
     } else {
-        block<false, false>(a, u, begin, end, sums);
+        dispatch<false>(a, u, gravity, damped, begin, end, sums);
     }
 }
 

@@ -111,9 +111,14 @@ NodeKernel g_node_kernel = NodeKernel::Auto;
 // energies at t^n, and x^{n+1} = x^n + dt v^{n+1/2} (supported nodes are redone by the caller
 // once their velocity is prescribed). Partial sums per fixed block of kNodeBlock nodes go to
 // part[kNodeSlots * block]. kGravity / kDamped compile out the gravity work (and its read of
-// X) and the damping term when they are zero, which leaves the sums bitwise unchanged.
+// X) and the damping term when they are zero, which leaves the sums bitwise unchanged. Without
+// kEnergy (State::need_energy false) the kinetic energy and the gravity work are not summed
+// (slots 0, 1 stay 0; step() then leaves them stale, like the strain energy): their ordered sums
+// are serial chains of one addition per node, ~4 cycles each, the largest cost of the update on
+// the 3 nodes per triangle of a jointed mesh (docs/performance.md). The damping power is
+// integrated every step and always summed.
 // The AVX-512 kernel (integrate/node_update_simd.cpp) does the same per block, bitwise.
-template <bool kGravity, bool kDamped>
+template <bool kGravity, bool kDamped, bool kEnergy>
 void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2* __restrict v,
                   const Vec2* __restrict f, Real* __restrict part) {
     const NodeId nn = m.num_nodes();
@@ -129,7 +134,8 @@ void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2*
         const NodeId end = std::min(nn, (blk + 1) * kNodeBlock);
         Real* slot = part + kNodeSlots * static_cast<size_t>(blk);
         if (simd) {
-            detail::node_block_avx512(arrays, u, kGravity, kDamped, blk * kNodeBlock, end, slot);
+            detail::node_block_avx512(arrays, u, kGravity, kDamped, kEnergy, blk * kNodeBlock, end,
+                                      slot);
             continue;
         }
         for (NodeId i = blk * kNodeBlock; i < end; ++i) {
@@ -141,9 +147,9 @@ void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2*
             if constexpr (kDamped) fi -= (u.c * mi) * v_old;
             const Vec2 v_new = v_old + (u.dt_v * inv) * fi;
             const Vec2 vn = u.first ? v_old : 0.5 * (v_old + v_new);  // v^n (theory eq. 5.2)
-            kin += mi * norm2(vn);
+            if constexpr (kEnergy) kin += mi * norm2(vn);
             // work of gravity up to x^n: the exact potential change (theory eq. 4.2)
-            if constexpr (kGravity) grav += mi * dot(u.g, x[i] - x0[i]);
+            if constexpr (kGravity && kEnergy) grav += mi * dot(u.g, x[i] - x0[i]);
             if constexpr (kDamped) damp += u.c * mi * dot(v_old, vn);
             v[i] = v_new;
             x[i] += u.dt * v_new;
@@ -282,14 +288,21 @@ void step(const Model& m, State& s) {
     const Real* inv_mass = m.node_inv_mass.data();
     const bool gravity = g.x != 0 || g.y != 0;
     const NodeUpdate u{dt, dt_v, c, g, first};
-    if (gravity && mass_damped) {
-        update_nodes<true, true>(m, u, x, v, f, part);
-    } else if (gravity) {
-        update_nodes<true, false>(m, u, x, v, f, part);
-    } else if (mass_damped) {
-        update_nodes<false, true>(m, u, x, v, f, part);
+    const auto update = [&]<bool kEnergy>() {
+        if (gravity && mass_damped) {
+            update_nodes<true, true, kEnergy>(m, u, x, v, f, part);
+        } else if (gravity) {
+            update_nodes<true, false, kEnergy>(m, u, x, v, f, part);
+        } else if (mass_damped) {
+            update_nodes<false, true, kEnergy>(m, u, x, v, f, part);
+        } else {
+            update_nodes<false, false, kEnergy>(m, u, x, v, f, part);
+        }
+    };
+    if (s.need_energy) {
+        update.template operator()<true>();
     } else {
-        update_nodes<false, false>(m, u, x, v, f, part);
+        update.template operator()<false>();
     }
     // reduce in block order: the same sums whatever the thread count
     Real kinetic2 = 0, gravity_work = 0, damping_power = 0;
@@ -346,10 +359,12 @@ void step(const Model& m, State& s) {
         }
     }
 
-    s.energy.kinetic = 0.5 * kinetic2;
     s.energy.time = s.time;
-    if (s.need_energy) s.energy.strain = pass.strain_energy;  // else stale (State::need_energy)
-    s.energy.work_gravity = gravity_work;
+    if (s.need_energy) {  // else stale (State::need_energy)
+        s.energy.kinetic = 0.5 * kinetic2;
+        s.energy.strain = pass.strain_energy;
+        s.energy.work_gravity = gravity_work;
+    }
     // the reaction R^n acts over [t^{n-1/2}, t^{n+1/2}]: half of its work belongs before t^n, the
     // other half is booked with the next step (theory eq. 4.3)
     if (loaded) {

@@ -82,5 +82,30 @@ TEST(NeedEnergy, SkippedStepKeepsTheLastStrainEnergy) {
     EXPECT_NE(s.energy.strain, strain);
 }
 
+// The kinetic energy and the gravity work too (their ordered node sums are skipped); the
+// dissipated energy is integrated every step, so it keeps growing.
+TEST(NeedEnergy, SkippedStepKeepsTheLastKineticEnergyAndGravityWork) {
+    scenes::BlockOptions o;
+    o.num_tris = 2000;
+    o.gravity = true;
+    o.viscosity = 2e3;
+    const Model m = scenes::make_block(o);
+    State s = make_state(m, 0.5 * stable_time_step(m));
+    for (int k = 0; k < 20; ++k)
+        step(m, s);
+    const Energy e = s.energy;
+    ASSERT_GT(e.kinetic, 0);
+    ASSERT_NE(e.work_gravity, 0);
+    s.need_energy = false;
+    step(m, s);
+    EXPECT_EQ(s.energy.kinetic, e.kinetic);
+    EXPECT_EQ(s.energy.work_gravity, e.work_gravity);
+    EXPECT_GT(s.energy.dissipated_viscous, e.dissipated_viscous);
+    s.need_energy = true;
+    step(m, s);
+    EXPECT_NE(s.energy.kinetic, e.kinetic);
+    EXPECT_NE(s.energy.work_gravity, e.work_gravity);
+}
+
 }  // namespace
 }  // namespace fdem
