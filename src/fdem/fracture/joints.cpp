@@ -3,7 +3,12 @@
 
 #include <omp.h>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
 #include <algorithm>
+#include <cstddef>
 #include <limits>
 #include <string>
 
@@ -222,25 +227,47 @@ struct Block {
     m = std::max(xi, eta);
 }
 
-// Joints j0 .. j0 + 7: true and B filled when all are intact, of one law, long enough and
-// elastic at their three points (then B holds what one_joint would compute); false otherwise.
-template <bool kEnergy>
-[[gnu::always_inline]] inline bool block_law(const Joints& J, const JointState& s,
-                                             const Vec2* __restrict x, int32_t j0, Block& B) {
-    const int32_t law = J.law[j0];
+// The law of joints j0 .. j0 + 7, all intact: true when all are of one law (its index in law).
+[[gnu::always_inline]] inline bool block_qualifies(const Joints& J, const JointState& s, int32_t j0,
+                                                   int32_t& law) {
+    law = J.law[j0];
     bool ok = true;
     for (int l = 0; l < kLanes; ++l)
         ok &= (s.status[j0 + l] == JointStatus::Intact) & (J.law[j0 + l] == law);
-    if (!ok) return false;
-    const JointLaw& L = J.laws[static_cast<size_t>(law)];
-    alignas(64) Real x0x[kLanes], x0y[kLanes], x1x[kLanes], x1y[kLanes], x2x[kLanes], x2y[kLanes],
-        x3x[kLanes], x3y[kLanes], len0[kLanes];
+    return ok;
+}
+
+// Node positions of the 8 joints, corner k (0..3) to P.x[k], P.y[k] lane by lane.
+struct BlockPositions {
+    alignas(64) Real x[4][kLanes];
+    alignas(64) Real y[4][kLanes];
+};
+
+[[gnu::always_inline]] inline void gather_positions(const Joints& J, const Vec2* __restrict x,
+                                                    int32_t j0, BlockPositions& P) {
     for (int l = 0; l < kLanes; ++l) {
         const auto& nd = J.nodes[j0 + l];
-        x0x[l] = x[nd[0]].x, x0y[l] = x[nd[0]].y, x1x[l] = x[nd[1]].x, x1y[l] = x[nd[1]].y;
-        x2x[l] = x[nd[2]].x, x2y[l] = x[nd[2]].y, x3x[l] = x[nd[3]].x, x3y[l] = x[nd[3]].y;
-        len0[l] = J.length0[j0 + l];
+        for (int k = 0; k < 4; ++k)
+            P.x[k][l] = x[nd[k]].x, P.y[k][l] = x[nd[k]].y;
     }
+}
+
+// Joints j0 .. j0 + 7 (block_qualifies: intact, of law L), positions in P: true and B filled
+// when all are long enough and elastic at their three points (then B holds what one_joint would
+// compute); false otherwise.
+template <bool kEnergy>
+[[gnu::always_inline]] inline bool block_core(const Joints& J, const JointState& s,
+                                              const JointLaw& L, const BlockPositions& P,
+                                              int32_t j0, Block& B) {
+    const Real* x0x = P.x[0];
+    const Real* x0y = P.y[0];
+    const Real* x1x = P.x[1];
+    const Real* x1y = P.y[1];
+    const Real* x2x = P.x[2];
+    const Real* x2y = P.y[2];
+    const Real* x3x = P.x[3];
+    const Real* x3y = P.y[3];
+    const Real* len0 = J.length0.data() + j0;
     alignas(64) Real fp[4][kLanes], dp[4][kLanes];  // last forces and separations (eq. 9.17)
     for (int l = 0; l < kLanes; ++l) {
         const auto& f4 = s.f_prev[j0 + l];
@@ -306,15 +333,54 @@ template <bool kEnergy>
 template <bool kEnergy>
 bool block_law_portable(const Joints& J, const JointState& s, const Vec2* __restrict x, int32_t j0,
                         Block& B) {
-    return block_law<kEnergy>(J, s, x, j0, B);
+    int32_t law;
+    if (!block_qualifies(J, s, j0, law)) return false;
+    BlockPositions P;
+    gather_positions(J, x, j0, P);
+    return block_core<kEnergy>(J, s, J.laws[static_cast<size_t>(law)], P, j0, B);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define FDEM_JOINT_AVX512 1
+// GCC 12 warns inside its own avx512fintrin.h about the undefined upper half of
+// _mm512_castpd256_pd512 (filled by the next insert): a false positive
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#define FDEM_JOINT_AVX512_TARGET __attribute__((target("avx512f,prefer-vector-width=512")))
+
+// gather_positions with AVX-512: the 8 positions of one corner are loaded as 16-byte Vec2 at
+// addresses from scalar id loads and de-interleaved by two permutes (as the CST kernel's
+// load_corner; the auto-vectorised loop extracted the ids from vectors and inserted the
+// positions one double at a time, ~200 instructions per block). Only moves data: same bits.
+FDEM_JOINT_AVX512_TARGET [[gnu::always_inline]] inline void gather_positions_avx512(
+    const Joints& J, const Vec2* __restrict x, int32_t j0, BlockPositions& P) {
+    static_assert(sizeof(J.nodes[0]) == 4 * sizeof(int32_t) && sizeof(Vec2) == 2 * sizeof(double));
+    const int32_t* q = J.nodes[static_cast<size_t>(j0)].data();
+    const double* xd = reinterpret_cast<const double*>(x);
+    const auto at = [&](int i, int k) {
+        return _mm_loadu_pd(xd + 2 * static_cast<ptrdiff_t>(q[4 * i + k]));
+    };
+    const __m512i ix = _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14);
+    const __m512i iy = _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15);
+    for (int k = 0; k < 4; ++k) {
+        const __m256d l0 = _mm256_insertf128_pd(_mm256_castpd128_pd256(at(0, k)), at(1, k), 1);
+        const __m256d l1 = _mm256_insertf128_pd(_mm256_castpd128_pd256(at(2, k)), at(3, k), 1);
+        const __m256d h0 = _mm256_insertf128_pd(_mm256_castpd128_pd256(at(4, k)), at(5, k), 1);
+        const __m256d h1 = _mm256_insertf128_pd(_mm256_castpd128_pd256(at(6, k)), at(7, k), 1);
+        const __m512d z0 = _mm512_insertf64x4(_mm512_castpd256_pd512(l0), l1, 1);
+        const __m512d z1 = _mm512_insertf64x4(_mm512_castpd256_pd512(h0), h1, 1);
+        _mm512_store_pd(P.x[k], _mm512_permutex2var_pd(z0, ix, z1));
+        _mm512_store_pd(P.y[k], _mm512_permutex2var_pd(z0, iy, z1));
+    }
+}
+
 template <bool kEnergy>
-__attribute__((target("avx512f,prefer-vector-width=512"))) bool block_law_avx512(
-    const Joints& J, const JointState& s, const Vec2* __restrict x, int32_t j0, Block& B) {
-    return block_law<kEnergy>(J, s, x, j0, B);
+FDEM_JOINT_AVX512_TARGET bool block_law_avx512(const Joints& J, const JointState& s,
+                                               const Vec2* __restrict x, int32_t j0, Block& B) {
+    int32_t law;
+    if (!block_qualifies(J, s, j0, law)) return false;
+    BlockPositions P;
+    gather_positions_avx512(J, x, j0, P);
+    return block_core<kEnergy>(J, s, J.laws[static_cast<size_t>(law)], P, j0, B);
 }
 #endif
 
@@ -353,12 +419,22 @@ const bool g_chosen = (choose_path(detail::JointPath::Auto), true);
 template <bool kEnergy, bool kScatter>
 [[gnu::always_inline]] inline void commit_block(const Joints& J, JointState& s, Vec2* __restrict f,
                                                 int32_t j0, const Block& B, ChunkOut& out) {
+    // the chunk's sums in joint order, carried in registers (`out` lives in memory: its address
+    // is taken by the scalar path, so `out.work += ` per joint was a chain of a store-forward and
+    // an addition, ~9 cycles per joint)
+    Real work = out.work, energy = out.energy;
+    for (int l = 0; l < kLanes; ++l) {
+        if constexpr (kEnergy) energy += B.en[l];
+        work += B.dw[l];
+    }
+    out.work = work;
+    if constexpr (kEnergy) out.energy = energy;
+    Real* __restrict wj = s.work.data() + j0;
+    for (int l = 0; l < kLanes; ++l)
+        wj[l] += B.dw[l];
     for (int l = 0; l < kLanes; ++l) {
         const int32_t j = j0 + l;
         const Vec2 f0{B.f0x[l], B.f0y[l]}, f1{B.f1x[l], B.f1y[l]};
-        if constexpr (kEnergy) out.energy += B.en[l];
-        s.work[j] += B.dw[l];
-        out.work += B.dw[l];
         s.f_prev[j] = {f0.x, f0.y, f1.x, f1.y};
         s.d_prev[j] = {B.dax[l], B.day[l], B.dbx[l], B.dby[l]};
         if constexpr (kScatter) {
