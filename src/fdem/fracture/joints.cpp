@@ -241,6 +241,8 @@ struct Block {
 struct BlockPositions {
     alignas(64) Real x[4][kLanes];
     alignas(64) Real y[4][kLanes];
+    alignas(64) Real fp[4][kLanes];  ///< last forces f0x, f0y, f1x, f1y (eq. 9.17)
+    alignas(64) Real dp[4][kLanes];  ///< last separations dax, day, dbx, dby (eq. 9.17)
 };
 
 [[gnu::always_inline]] inline void gather_positions(const Joints& J, const Vec2* __restrict x,
@@ -252,13 +254,23 @@ struct BlockPositions {
     }
 }
 
-// Joints j0 .. j0 + 7 (block_qualifies: intact, of law L), positions in P: true and B filled
-// when all are long enough and elastic at their three points (then B holds what one_joint would
-// compute); false otherwise.
+[[gnu::always_inline]] inline void load_block_state(const JointState& s, int32_t j0,
+                                                    BlockPositions& P) {
+    for (int l = 0; l < kLanes; ++l) {
+        const auto& f4 = s.f_prev[j0 + l];
+        const auto& d4 = s.d_prev[j0 + l];
+        for (int k = 0; k < 4; ++k)
+            P.fp[k][l] = f4[k], P.dp[k][l] = d4[k];
+    }
+}
+
+// Joints j0 .. j0 + 7 (block_qualifies: intact, of law L), positions and last state in P: true
+// and B filled when all are long enough and elastic at their three points (then B holds what
+// one_joint would compute); false otherwise. Writes nothing else: the caller stores the eq. 9.17
+// state (f_prev, d_prev) of a qualified block.
 template <bool kEnergy>
-[[gnu::always_inline]] inline bool block_core(const Joints& J, const JointState& s,
-                                              const JointLaw& L, const BlockPositions& P,
-                                              int32_t j0, Block& B) {
+[[gnu::always_inline]] inline bool block_core(const Joints& J, const JointLaw& L,
+                                              const BlockPositions& P, int32_t j0, Block& B) {
     const Real* x0x = P.x[0];
     const Real* x0y = P.y[0];
     const Real* x1x = P.x[1];
@@ -268,13 +280,8 @@ template <bool kEnergy>
     const Real* x3x = P.x[3];
     const Real* x3y = P.y[3];
     const Real* len0 = J.length0.data() + j0;
-    alignas(64) Real fp[4][kLanes], dp[4][kLanes];  // last forces and separations (eq. 9.17)
-    for (int l = 0; l < kLanes; ++l) {
-        const auto& f4 = s.f_prev[j0 + l];
-        const auto& d4 = s.d_prev[j0 + l];
-        for (int k = 0; k < 4; ++k)
-            fp[k][l] = f4[k], dp[k][l] = d4[k];
-    }
+    const auto& fp = P.fp;  // last forces and separations (eq. 9.17)
+    const auto& dp = P.dp;
     alignas(64) Real good[kLanes];
     for (int l = 0; l < kLanes; ++l) {
         // eq. 9.1 (as one_joint)
@@ -330,14 +337,25 @@ template <bool kEnergy>
     return all == 1.0;
 }
 
+// The eq. 9.17 state of a qualified block: last forces and separations of its 8 joints.
+[[gnu::always_inline]] inline void store_block_state(JointState& s, int32_t j0, const Block& B) {
+    for (int l = 0; l < kLanes; ++l) {
+        s.f_prev[j0 + l] = {B.f0x[l], B.f0y[l], B.f1x[l], B.f1y[l]};
+        s.d_prev[j0 + l] = {B.dax[l], B.day[l], B.dbx[l], B.dby[l]};
+    }
+}
+
 template <bool kEnergy>
-bool block_law_portable(const Joints& J, const JointState& s, const Vec2* __restrict x, int32_t j0,
+bool block_law_portable(const Joints& J, JointState& s, const Vec2* __restrict x, int32_t j0,
                         Block& B) {
     int32_t law;
     if (!block_qualifies(J, s, j0, law)) return false;
     BlockPositions P;
     gather_positions(J, x, j0, P);
-    return block_core<kEnergy>(J, s, J.laws[static_cast<size_t>(law)], P, j0, B);
+    load_block_state(s, j0, P);
+    if (!block_core<kEnergy>(J, J.laws[static_cast<size_t>(law)], P, j0, B)) return false;
+    store_block_state(s, j0, B);
+    return true;
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -373,18 +391,45 @@ FDEM_JOINT_AVX512_TARGET [[gnu::always_inline]] inline void gather_positions_avx
     }
 }
 
+// store_block_state with AVX-512: the four lane vectors a, b, c, d of the 8 joints transposed
+// into their 8 records (a_l, b_l, c_l, d_l), contiguous at out (8 x 4 doubles), by permutes and
+// four 64-byte stores instead of 32 scalar stores.
+FDEM_JOINT_AVX512_TARGET [[gnu::always_inline]] inline void store_records_avx512(
+    double* out, const double* a, const double* b, const double* c, const double* d) {
+    const __m512d va = _mm512_load_pd(a), vb = _mm512_load_pd(b);
+    const __m512d vc = _mm512_load_pd(c), vd = _mm512_load_pd(d);
+    const __m512i lo = _mm512_setr_epi64(0, 8, 1, 9, 2, 10, 3, 11);
+    const __m512i hi = _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15);
+    const __m512d ab_lo = _mm512_permutex2var_pd(va, lo, vb),
+                  ab_hi = _mm512_permutex2var_pd(va, hi, vb);
+    const __m512d cd_lo = _mm512_permutex2var_pd(vc, lo, vd),
+                  cd_hi = _mm512_permutex2var_pd(vc, hi, vd);
+    const __m512i r0 = _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11);
+    const __m512i r1 = _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15);
+    _mm512_storeu_pd(out, _mm512_permutex2var_pd(ab_lo, r0, cd_lo));
+    _mm512_storeu_pd(out + 8, _mm512_permutex2var_pd(ab_lo, r1, cd_lo));
+    _mm512_storeu_pd(out + 16, _mm512_permutex2var_pd(ab_hi, r0, cd_hi));
+    _mm512_storeu_pd(out + 24, _mm512_permutex2var_pd(ab_hi, r1, cd_hi));
+}
+
 template <bool kEnergy>
-FDEM_JOINT_AVX512_TARGET bool block_law_avx512(const Joints& J, const JointState& s,
+FDEM_JOINT_AVX512_TARGET bool block_law_avx512(const Joints& J, JointState& s,
                                                const Vec2* __restrict x, int32_t j0, Block& B) {
     int32_t law;
     if (!block_qualifies(J, s, j0, law)) return false;
     BlockPositions P;
     gather_positions_avx512(J, x, j0, P);
-    return block_core<kEnergy>(J, s, J.laws[static_cast<size_t>(law)], P, j0, B);
+    load_block_state(s, j0, P);
+    if (!block_core<kEnergy>(J, J.laws[static_cast<size_t>(law)], P, j0, B)) return false;
+    static_assert(sizeof(s.f_prev[0]) == 4 * sizeof(double) &&
+                  sizeof(s.d_prev[0]) == 4 * sizeof(double));
+    store_records_avx512(s.f_prev[static_cast<size_t>(j0)].data(), B.f0x, B.f0y, B.f1x, B.f1y);
+    store_records_avx512(s.d_prev[static_cast<size_t>(j0)].data(), B.dax, B.day, B.dbx, B.dby);
+    return true;
 }
 #endif
 
-using BlockFn = bool (*)(const Joints&, const JointState&, const Vec2* __restrict, int32_t, Block&);
+using BlockFn = bool (*)(const Joints&, JointState&, const Vec2* __restrict, int32_t, Block&);
 
 // set by choose_path (at load) or detail::set_joint_path; [kEnergy]
 BlockFn g_block[2] = {nullptr, nullptr};
@@ -435,8 +480,6 @@ template <bool kEnergy, bool kScatter>
     for (int l = 0; l < kLanes; ++l) {
         const int32_t j = j0 + l;
         const Vec2 f0{B.f0x[l], B.f0y[l]}, f1{B.f1x[l], B.f1y[l]};
-        s.f_prev[j] = {f0.x, f0.y, f1.x, f1.y};
-        s.d_prev[j] = {B.dax[l], B.day[l], B.dbx[l], B.dby[l]};
         if constexpr (kScatter) {
             const auto& nd = J.nodes[j];
             f[nd[0]] += f0;
