@@ -109,7 +109,8 @@ struct JointState {
     std::vector<std::array<Real, 4>> d_prev;  ///< end separations delta_a, delta_b of the last call
     Real total_work = 0;                      ///< sum over all calls of the work increments
     // scratch (sized once by make_joint_state)
-    std::vector<std::array<Vec2, 2>> jf;  ///< per-joint forces on nodes 0, 1 (parallel path)
+    /// per-joint forces on nodes 0, 1 (parallel path; empty until the first call with 2+ threads)
+    std::vector<std::array<Vec2, 2>> jf;
     std::vector<Real> chunk_sums;
 };
 

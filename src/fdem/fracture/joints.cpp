@@ -61,7 +61,8 @@ JointState make_joint_state(const Joints& J) {
     s.work.assign(n, 0);
     s.f_prev.assign(n, {0, 0, 0, 0});
     s.d_prev.assign(n, {0, 0, 0, 0});
-    s.jf.assign(n, {});
+    // jf: sized by the first call with 2+ threads (joint_forces), 32 B per joint not held by
+    // single-threaded runs
     const size_t nc = (n + kJointChunk - 1) / kJointChunk;
     s.chunk_sums.assign(kSlots * nc, 0);
     return s;
@@ -576,6 +577,9 @@ JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, 
         for (int32_t c = 0; c < nc; ++c)
             run_chunk<true>(J, s, xp, fp, c, step, need_energy);
     } else {
+        // the per-joint force slots of the gather path: allocated once, on the first call with
+        // 2+ threads (a serial run never holds them; docs/performance.md, memory per triangle)
+        if (s.jf.size() < static_cast<size_t>(nj)) s.jf.resize(static_cast<size_t>(nj));
         const int32_t ng = static_cast<int32_t>(J.gather_node.size());
 #pragma omp parallel
         {
