@@ -211,7 +211,7 @@ def run_ring(out, fdem, threads, no_run, rate):
     grady = grady_size(rock, rate)
     l0, r0 = ring_scales(rock)
     return {"count": len(frag), "multi": len(multi), "grady": grady,
-            "grady_count": 2 * math.pi * RING_R / grady, "zmr": zmr_size(rock, rate),
+            "zmr": zmr_size(rock, rate),
             "l0": l0, "rate0": r0, "h": cfg["body"][0]["mesh_size"],
             "mean": 2 * math.pi * RING_R / len(frag),
             "mean_multi": 2 * math.pi * RING_R / len(multi) if multi else float("nan"),
@@ -219,7 +219,7 @@ def run_ring(out, fdem, threads, no_run, rate):
             "largest": max(arc), "single_mass": math.fsum(r["mass"] for r in frag
                                                           if r["triangles"] == 1) / total,
             "energy_err": max(abs(h["energy_error"]) for h in hist) / ke0, "ke0": ke0,
-            "ke0_fdem": hist[0]["kinetic"], "mass_err": mass_err, "ntri": ntri, "rate": rate,
+            "mass_err": mass_err, "ntri": ntri, "rate": rate,
             "broken": hist[-1].get("joints.broken", 0), "w_frac": hist[-1].get("energy.fracture", 0),
             "wall": wall, "rock": rock}
 

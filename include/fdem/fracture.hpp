@@ -108,7 +108,7 @@ struct JointState {
     std::vector<std::array<Real, 4>> f_prev;  ///< forces on nodes 0, 1 of the last call
     std::vector<std::array<Real, 4>> d_prev;  ///< end separations delta_a, delta_b of the last call
     Real total_work = 0;                      ///< sum over all calls of the work increments
-    // scratch (sized once by make_joint_state)
+    // scratch (chunk_sums sized once by make_joint_state, jf by the first call with 2+ threads)
     /// per-joint forces on nodes 0, 1 (parallel path; empty until the first call with 2+ threads)
     std::vector<std::array<Vec2, 2>> jf;
     std::vector<Real> chunk_sums;

@@ -32,8 +32,9 @@ struct JointPass {
 /// for every OpenMP thread count: with one thread the forces are scattered in joint order, with
 /// more each joint writes its two forces to JointState::jf and every node gathers its joints in
 /// joint order (the same additions in the same order); sums go per chunk of kJointChunk joints,
-/// then over chunks in chunk order. No allocation. A joint shorter than 1e-9 h_0 or non-finite
-/// throws SimulationError(step, time, "joint J").
+/// then over chunks in chunk order. No allocation after the first call with 2+ threads (which sizes
+/// JointState::jf). A joint shorter than 1e-9 h_0 or non-finite throws SimulationError(step, time,
+/// "joint J").
 JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, std::span<Vec2> f,
                        bool need_energy, int64_t step = 0, double time = 0);
 
