@@ -4,15 +4,19 @@
 //
 // Pair loop order: candidate pairs sorted by (target node, contactor body), merged with the
 // active-contact list of the previous step that is sorted the same way. The pairs are evaluated
-// in parallel (OpenMP) into a per-pair buffer and applied serially in pair order, so the result
-// is bitwise the same for any thread count. Baseline A (ContactAlgorithm::LegacyTriangle) goes
-// to legacy_triangle.cpp; baseline B only changes the field (field.hpp evaluate_field).
+// in parallel (OpenMP) into a per-pair buffer and applied in pair order (the forces in parallel
+// by node range, the sums serially), so the result is bitwise the same for any thread count.
+// Baseline A (ContactAlgorithm::LegacyTriangle) goes to legacy_triangle.cpp; baseline B only
+// changes the field (field.hpp evaluate_field).
 #include "contact/contact.hpp"
 #include "fdem/build.hpp"
+
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -61,19 +65,36 @@ bool inside_body(const ContactTopology& ct, BodyId c, const Vec2* x, Vec2 p) {
     return in;
 }
 
+// The force scatter of a pair in contact writes to the nodes of one node range only when the
+// scatter runs in parallel (add_contact_forces() step 3c): AllNodes takes every node, NodeRange
+// [lo, hi) the nodes of one thread. The values added are the same expressions either way.
+struct AllNodes {
+    static constexpr bool has(NodeId) { return true; }
+};
+struct NodeRange {
+    NodeId lo = 0, hi = 0;
+    bool has(NodeId i) const { return i >= lo && i < hi; }
+};
+
+template <class Nodes>
+inline void add_force(State& s, NodeId i, Vec2 f, const Nodes& nodes) {
+    if (!nodes.has(i)) return;
+    s.f[i] += f;
+    s.f_contact[i] += f;
+}
+
 // force f on target t: the node, or half to each end node of an edge target (theory §6.12)
-inline void add_target_force(const ContactTopology& ct, State& s, NodeId t, Vec2 f) {
+template <class Nodes>
+inline void add_target_force(const ContactTopology& ct, State& s, NodeId t, Vec2 f,
+                             const Nodes& nodes) {
     if (t < ct.num_real_nodes) {
-        s.f[t] += f;
-        s.f_contact[t] += f;
+        add_force(s, t, f, nodes);
         return;
     }
     const auto& e = ct.boundary_edges[static_cast<size_t>(t - ct.edge_target_base)];
     const Vec2 h = 0.5 * f;
-    s.f[e[0]] += h;
-    s.f_contact[e[0]] += h;
-    s.f[e[1]] += h;
-    s.f_contact[e[1]] += h;
+    add_force(s, e[0], h, nodes);
+    add_force(s, e[1], h, nodes);
 }
 
 // Welded contactor (docs/theory.md §6.15, eq. 6.23): the mass-weighted mean of group g's copies
@@ -96,31 +117,82 @@ inline Vec2 weld_mean(const ContactTopology& ct, const Vec2* a, NodeId i) {
 
 // force f on real contactor node i: to the copies of its sector by their mass shares if grouped
 // (the chain rule of eq. 6.23), else to i
-inline void add_real_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f) {
+template <class Nodes>
+inline void add_real_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f,
+                           const Nodes& nodes) {
     const int32_t g = ct.welded() ? ct.weld_group[static_cast<size_t>(i)] : -1;
     if (g < 0) {
-        s.f[i] += f;
-        s.f_contact[i] += f;
+        add_force(s, i, f, nodes);
         return;
     }
     for (int32_t k = ct.weld_group_begin[static_cast<size_t>(g)];
-         k < ct.weld_group_begin[static_cast<size_t>(g) + 1]; ++k) {
-        const NodeId c = ct.weld_copy[static_cast<size_t>(k)];
-        const Vec2 fc = ct.weld_share[static_cast<size_t>(k)] * f;
-        s.f[c] += fc;
-        s.f_contact[c] += fc;
-    }
+         k < ct.weld_group_begin[static_cast<size_t>(g) + 1]; ++k)
+        add_force(s, ct.weld_copy[static_cast<size_t>(k)],
+                  ct.weld_share[static_cast<size_t>(k)] * f, nodes);
 }
 
 // force f on contact node i (virtual: to its parents with the frozen weights, spec §4.4-6)
-inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f) {
+template <class Nodes>
+inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f,
+                           const Nodes& nodes) {
     if (i < ct.num_real_nodes) {
-        add_real_force(ct, s, i, f);
+        add_real_force(ct, s, i, f, nodes);
         return;
     }
     const size_t v = static_cast<size_t>(i - ct.num_real_nodes);
     for (int k = 0; k < 3; ++k)
-        add_real_force(ct, s, ct.virt_parent[v][k], ct.virt_weight[v][k] * f);
+        add_real_force(ct, s, ct.virt_parent[v][k], ct.virt_weight[v][k] * f, nodes);
+}
+
+// f on the target, -N_i f on the contactor's vertices (eq. 20): every force of one pair in
+// contact, in the order of the serial loop (target, then vertices 0, 1, 2)
+template <class Nodes>
+inline void add_pair_forces(const ContactTopology& ct, State& s, NodeId j, const PairResult& o,
+                            const Nodes& nodes) {
+    const auto& q = ct.sub_tri[o.tri];
+    add_target_force(ct, s, j, o.f, nodes);
+    for (int k = 0; k < 3; ++k)
+        add_node_force(ct, s, q[k], -o.N[k] * o.f, nodes);
+}
+
+// The smallest and largest real node add_pair_forces() writes to for target j and located
+// sub-triangle tri (the same traversal)
+struct NodeSpan {
+    NodeId lo = std::numeric_limits<NodeId>::max(), hi = -1;
+    void add(NodeId i) {
+        lo = std::min(lo, i);
+        hi = std::max(hi, i);
+    }
+};
+inline void span_real(const ContactTopology& ct, NodeId i, NodeSpan& sp) {
+    const int32_t g = ct.welded() ? ct.weld_group[static_cast<size_t>(i)] : -1;
+    if (g < 0) {
+        sp.add(i);
+        return;
+    }
+    for (int32_t k = ct.weld_group_begin[static_cast<size_t>(g)];
+         k < ct.weld_group_begin[static_cast<size_t>(g) + 1]; ++k)
+        sp.add(ct.weld_copy[static_cast<size_t>(k)]);
+}
+inline NodeSpan pair_span(const ContactTopology& ct, NodeId j, int32_t tri) {
+    NodeSpan sp;
+    if (j < ct.num_real_nodes) {
+        sp.add(j);
+    } else {
+        const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
+        sp.add(e[0]);
+        sp.add(e[1]);
+    }
+    for (const NodeId i : ct.sub_tri[tri]) {
+        if (i < ct.num_real_nodes) {
+            span_real(ct, i, sp);
+            continue;
+        }
+        const size_t v = static_cast<size_t>(i - ct.num_real_nodes);
+        for (int k = 0; k < 3; ++k)
+            span_real(ct, ct.virt_parent[v][k], sp);
+    }
+    return sp;
 }
 
 // the order of the per-pair lists (ContactState::active, rebase, the candidates): by (target
@@ -845,6 +917,7 @@ void add_contact_forces(const Model& m, State& s) {
     if (cs.pair_out.size() < static_cast<size_t>(npairs)) {
         cs.pair_out.resize(static_cast<size_t>(npairs));
         cs.in_contact.resize(static_cast<size_t>(npairs));
+        cs.pair_span.resize(2 * static_cast<size_t>(npairs));
     }
     PairResult* out = cs.pair_out.data();
     int32_t* in_contact = cs.in_contact.data();
@@ -852,51 +925,14 @@ void add_contact_forces(const Model& m, State& s) {
     auto chunk_begin = [npairs](int32_t ch) {
         return static_cast<int32_t>(static_cast<int64_t>(npairs) * ch / kPairChunks);
     };
-    {
-        const ContactState& ccs = cs;
-        const NodeId* cand_node = cs.cand.node.data();
-        const BodyId* cand_body = cs.cand.body.data();
-        BodyBox* box = cs.body_box.data();
-        const bool boxes = cs.box_reject;
-        const int32_t nbodies = m.num_bodies();
-        // one parallel region: the boxes (a worksharing loop inside body_boxes(), whose
-        // implicit barrier completes them), then the pairs
-#pragma omp parallel if (npairs > kMinParallelPairs)
-        {
-            if (boxes) body_boxes(ct, xc, xv, box, nbodies);
-#pragma omp for schedule(static)
-            for (int32_t ch = 0; ch < kPairChunks; ++ch) {
-                const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
-                // pass 1, branch-free: the pairs the box does not reject, in order
-                int32_t n = b;
-                for (int32_t pr = b; pr < e; ++pr) {
-                    // with body ids far apart in space (shuffled numbering) the box is a cache miss
-                    if (pr + kBoxPrefetch < e)
-                        __builtin_prefetch(&box[cand_body[pr + kBoxPrefetch]]);
-                    in_contact[n] = pr;
-                    n += !box_rejects(box[cand_body[pr]], target_point(ct, x, cand_node[pr]));
-                }
-                // pass 2: locate and law of those; the pairs in contact, compacted in place
-                // (ascending pairs: their histories are looked up from a cursor)
-                int32_t nc = b;
-                size_t cursor = 0;
-                for (int32_t k = b; k < n; ++k) {
-                    const int32_t pr = in_contact[k];
-                    if (evaluate_pair(m, ct, ccs, x, xc, v, xv, vv, dt, pr, out[nc], &cursor) >= 0)
-                        in_contact[nc++] = pr;
-                }
-                chunk_count[ch] = nc - b;
-            }
-        }
-    }
-
-    // 3b. apply in pair order, merged with the previous active list (both sorted by (node,
-    //     body)), releasing the histories of pairs that left contact in that merged order: the
-    //     sums and the force accumulation are those of a serial loop
+    // 3c. bookkeeping in pair order, merged with the previous active list (both sorted by
+    //     (node, body)), releasing the histories of pairs that left contact in that merged
+    //     order: the sums are those of a serial loop. Run by one thread (thread 0, beside the
+    //     force scatter of the others: it reads the pair results, they write forces)
     Real stored = 0, dissipated = 0;
-    size_t ia = 0;
     cs.active_next.clear();
-    auto release = [&](const ActiveContact& a) {
+    // (returns the energy the released pair adds to the dissipated sum)
+    auto release = [&](const ActiveContact& a) -> Real {
         const BodyId bt = m.node_body[target_node(ct, a.node)];
         const ContactParams& p =
             pair_parameters(cm, m.bodies[a.body].material, m.bodies[bt].material);
@@ -919,45 +955,135 @@ void add_contact_forces(const Model& m, State& s) {
             // ended by a rebuild (eq. 9.26): the normal potential the old topology gives it at
             // x^n leaves the books here, with its spring and damping as at any separation
             const RebaseEntry* e = find_pair(cs.rebase, a.node, a.body);
-            dissipated +=
-                (e != nullptr ? e->normal : 0.0) + release_energy(p, a.h, scale, false, dt);
-            return;
+            return (e != nullptr ? e->normal : 0.0) + release_energy(p, a.h, scale, false, dt);
         }
         // a pair continued with d0 < 0 (eq. 9.26) separates at d = 0 with d - d0 > 0: its
         // normal potential leaves the books as that of a lost pair
-        dissipated += release_energy(p, a.h, scale, lost || a.h.d0 < 0, dt);
+        return release_energy(p, a.h, scale, lost || a.h.d0 < 0, dt);
     };
-    // only the pairs in contact, in ascending pair order: an active pair that is a candidate
-    // but not in contact is released at the same place of the merged order as before (by the
-    // while loop, before the next larger key), so the order of every sum is unchanged
-    for (int32_t ch = 0; ch < kPairChunks; ++ch) {
-        const int32_t b = chunk_begin(ch);
-        for (int32_t k = b; k < b + chunk_count[ch]; ++k) {
-            const int32_t pr = in_contact[k];
-            const NodeId j = cs.cand.node[pr];
-            const BodyId c = cs.cand.body[pr];
-            while (ia < cs.active.size() && pair_below(cs.active[ia], j, c))
-                release(cs.active[ia++]);
-            if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) ++ia;
-            const PairResult& o = out[k];
+    // (with_forces: also the forces of each pair, 3b, in the same loop: one thread)
+    auto bookkeeping = [&](auto with_forces) {
+        // (local sums: the force scatter's stores may alias anything captured by reference)
+        size_t ia = 0;
+        Real st = 0, di = 0, max_ratio = cs.max_depth_ratio;
+        int32_t deep = cs.deep_penetrations;
+        // only the pairs in contact, in ascending pair order: an active pair that is a candidate
+        // but not in contact is released at the same place of the merged order as before (by the
+        // while loop, before the next larger key), so the order of every sum is unchanged
+        for (int32_t ch = 0; ch < kPairChunks; ++ch) {
+            const int32_t b = chunk_begin(ch);
+            for (int32_t k = b; k < b + chunk_count[ch]; ++k) {
+                const int32_t pr = in_contact[k];
+                const NodeId j = cs.cand.node[pr];
+                const BodyId c = cs.cand.body[pr];
+                while (ia < cs.active.size() && pair_below(cs.active[ia], j, c))
+                    di += release(cs.active[ia++]);
+                if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c)
+                    ++ia;
+                const PairResult& o = out[k];
+                if constexpr (decltype(with_forces)::value)
+                    add_pair_forces(ct, s, j, o, AllNodes{});
+                const Real ratio = o.h.depth_ratio;
+                max_ratio = std::max(max_ratio, ratio);
+                deep += ratio > cm.deep_ratio_limit ? 1 : 0;
 
-            // f on the target, -N_i f on the contactor (eq. 20)
-            const auto& q = ct.sub_tri[o.tri];
-            add_target_force(ct, s, j, o.f);
-            for (int kk = 0; kk < 3; ++kk)
-                add_node_force(ct, s, q[kk], -o.N[kk] * o.f);
-
-            const Real ratio = o.h.depth_ratio;
-            cs.max_depth_ratio = std::max(cs.max_depth_ratio, ratio);
-            if (ratio > cm.deep_ratio_limit) ++cs.deep_penetrations;
-
-            stored += o.stored;
-            dissipated += o.dissipated;
-            cs.active_next.push_back(ActiveContact{j, c, o.h});
+                st += o.stored;
+                di += o.dissipated;
+                cs.active_next.push_back(ActiveContact{j, c, o.h});
+            }
         }
+        while (ia < cs.active.size())
+            di += release(cs.active[ia++]);
+        stored = st;
+        dissipated = di;
+        cs.max_depth_ratio = max_ratio;
+        cs.deep_penetrations = deep;
+    };
+
+    {
+        const ContactState& ccs = cs;
+        const NodeId* cand_node = cs.cand.node.data();
+        const BodyId* cand_body = cs.cand.body.data();
+        BodyBox* box = cs.body_box.data();
+        const bool boxes = cs.box_reject;
+        const int32_t nbodies = m.num_bodies();
+        NodeId* span = cs.pair_span.data();
+        bool serial = false;
+        // one parallel region: the boxes (a worksharing loop inside body_boxes(), whose
+        // implicit barrier completes them), then the pairs, then their forces (3b) beside the
+        // bookkeeping (3c)
+#pragma omp parallel if (npairs > kMinParallelPairs)
+        {
+            const int nthreads = omp_get_num_threads();
+            if (boxes) body_boxes(ct, xc, xv, box, nbodies);
+#pragma omp for schedule(static)
+            for (int32_t ch = 0; ch < kPairChunks; ++ch) {
+                const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
+                // pass 1, branch-free: the pairs the box does not reject, in order
+                int32_t n = b;
+                for (int32_t pr = b; pr < e; ++pr) {
+                    // with body ids far apart in space (shuffled numbering) the box is a cache miss
+                    if (pr + kBoxPrefetch < e)
+                        __builtin_prefetch(&box[cand_body[pr + kBoxPrefetch]]);
+                    in_contact[n] = pr;
+                    n += !box_rejects(box[cand_body[pr]], target_point(ct, x, cand_node[pr]));
+                }
+                // pass 2: locate and law of those; the pairs in contact, compacted in place
+                // (ascending pairs: their histories are looked up from a cursor)
+                int32_t nc = b;
+                size_t cursor = 0;
+                for (int32_t k = b; k < n; ++k) {
+                    const int32_t pr = in_contact[k];
+                    if (evaluate_pair(m, ct, ccs, x, xc, v, xv, vv, dt, pr, out[nc], &cursor) < 0)
+                        continue;
+                    if (nthreads > 2) {  // the nodes its forces go to (for 3b)
+                        const NodeSpan sp = pair_span(ct, cand_node[pr], out[nc].tri);
+                        span[2 * nc] = sp.lo;
+                        span[2 * nc + 1] = sp.hi;
+                    }
+                    in_contact[nc++] = pr;
+                }
+                chunk_count[ch] = nc - b;
+            }
+            // (implicit barrier: every pair evaluated)
+
+            // 3b. the forces of the pairs in contact (eq. 20) in pair order, beside the
+            //     bookkeeping (3c). One thread: both. T >= 2 threads: thread 0 runs 3c, thread
+            //     r = 1 .. T-1 adds only to the real nodes [N (r-1) / (T-1), N r / (T-1)),
+            //     walking all pairs in pair order: every node receives its forces in the order
+            //     of the serial loop, so the bits do not depend on T. With T >= 3 a pair none of
+            //     whose nodes is in the range (its span, from pass 2) is skipped unread; one
+            //     with all of them in it takes the unchecked path.
+            const int t = omp_get_thread_num();
+            if (nthreads == 1) {
+                serial = true;  // both after the region (the faster code there)
+            } else if (t == 0) {
+                bookkeeping(std::false_type{});
+            } else {
+                const int64_t nn = ct.num_real_nodes, parts = nthreads - 1;
+                const NodeRange mine{static_cast<NodeId>(nn * (t - 1) / parts),
+                                     static_cast<NodeId>(nn * t / parts)};
+                for (int32_t ch = 0; ch < kPairChunks; ++ch) {
+                    const int32_t b = chunk_begin(ch);
+                    for (int32_t k = b; k < b + chunk_count[ch]; ++k) {
+                        const NodeId j = cand_node[in_contact[k]];
+                        if (parts == 1) {
+                            add_pair_forces(ct, s, j, out[k], AllNodes{});
+                            continue;
+                        }
+                        const NodeId lo = span[2 * k], hi = span[2 * k + 1];
+                        if (hi < mine.lo || lo >= mine.hi) continue;
+                        if (lo >= mine.lo && hi < mine.hi)
+                            add_pair_forces(ct, s, j, out[k], AllNodes{});
+                        else
+                            add_pair_forces(ct, s, j, out[k], mine);
+                    }
+                }
+            }
+        }
+        if (serial) bookkeeping(std::true_type{});
     }
-    while (ia < cs.active.size())
-        release(cs.active[ia++]);
+
     std::swap(cs.active, cs.active_next);
     if (cs.rebase_pending) {  // consumed (eq. 9.26); keeps its capacity
         cs.rebase.clear();

@@ -1,0 +1,88 @@
+// The contact forces of add_contact_forces() with 2+ threads (contact/contact.cpp, step 3b): one
+// thread keeps the books (history merge, energy sums, next active list) while the others add the
+// pairs' forces, each only to its range of real nodes and in pair order. Every node must receive
+// its forces in the order of the one-thread loop, so x, v, the forces and the contact energies
+// must be bitwise those of one thread for any thread count. The pack is large enough for the
+// parallel path (more candidate pairs than the narrow phase's serial threshold), its targets
+// include edge midpoints, and with 3 and 4 threads (two or three force ranges) pairs straddle a
+// range boundary; the shuffled pack (body ids far apart in space) makes such pairs common.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cstring>
+#include <vector>
+
+#include "fdem/simulate.hpp"
+#include "support/hash.hpp"
+#include "support/scenes.hpp"
+
+namespace fdem {
+namespace {
+
+struct Run {
+    std::vector<Vec2> x, v, f, f_contact;
+    Real contact = 0, dissipated = 0;
+    int32_t active = 0;
+    size_t candidates = 0;
+};
+
+Run run(const Model& m, int threads, int steps) {
+    omp_set_num_threads(threads);
+    State s = make_state(m, 0.5 * stable_time_step(m));
+    for (int k = 0; k < steps; ++k)
+        step(m, s);
+    return {s.x,
+            s.v,
+            s.f,
+            s.f_contact,
+            s.energy.contact,
+            s.energy.dissipated_contact,
+            s.contact.active_contacts,
+            s.contact.cand.node.size()};
+}
+
+bool same_bits(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec2)) == 0;
+}
+
+void expect_thread_independent(const Model& m) {
+    const Run one = run(m, 1, 80);
+    // the scene must exercise what this test is about: many pairs in contact, and more
+    // candidate pairs than the serial threshold of the narrow phase (2048)
+    ASSERT_GT(one.candidates, 4096u);
+    ASSERT_GT(one.active, 2000);
+    ASSERT_GT(one.contact, 0.0);
+    for (int threads : {2, 3, 4}) {
+        SCOPED_TRACE(threads);
+        const Run r = run(m, threads, 80);
+        EXPECT_TRUE(same_bits(one.x, r.x));
+        EXPECT_TRUE(same_bits(one.v, r.v));
+        EXPECT_TRUE(same_bits(one.f, r.f));
+        EXPECT_TRUE(same_bits(one.f_contact, r.f_contact));
+        EXPECT_EQ(one.contact, r.contact);
+        EXPECT_EQ(one.dissipated, r.dissipated);
+        EXPECT_EQ(one.active, r.active);
+    }
+}
+
+scenes::PackOptions saturated_pack(bool shuffled) {
+    scenes::PackOptions o;
+    o.blocks_x = o.blocks_y = 30;  // 1800 triangles
+    o.gap = 0;                     // touching from the start
+    o.speed = 0.5;
+    o.converge = true;
+    o.brick_bond = true;
+    o.shuffled = shuffled;
+    return o;
+}
+
+TEST(ParallelContactScatter, SameBitsForOneToFourThreads) {
+    expect_thread_independent(scenes::make_contact_pack(saturated_pack(false)));
+}
+
+TEST(ParallelContactScatter, SameBitsForOneToFourThreadsWithShuffledBodies) {
+    expect_thread_independent(scenes::make_contact_pack(saturated_pack(true)));
+}
+
+}  // namespace
+}  // namespace fdem
