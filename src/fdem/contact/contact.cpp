@@ -295,6 +295,7 @@ void init_contact_state(const Model& m, State& s) {
     cs.cand.begin.reserve(4 * nb + 17);
     cs.cand.tri.reserve(16 * nb + 64);
     cs.pair_out.reserve(4 * nb + 16);
+    cs.pair_span.reserve(2 * (4 * nb + 16));
     cs.body_box.assign(static_cast<size_t>(m.num_bodies()), BodyBox{});
     cs.broad.tri_center.reserve(nt);
     cs.broad.tri_radius.reserve(nt);
