@@ -330,6 +330,8 @@ void BM_StepPackSaturated(benchmark::State& st) {
 BENCHMARK(BM_StepPackSaturated)
     ->ArgsProduct({{20000, 80000}, {1, 2}})
     ->Unit(benchmark::kMicrosecond);
+// The same pack for exactly 300 steps: A/B runs of two binaries time the same stretch of the
+// compressing pack (a variable iteration count would compare different states).
 void BM_StepPackSaturatedFixed(benchmark::State& st) {
     BM_StepPackSaturated(st);
 }

@@ -65,36 +65,22 @@ bool inside_body(const ContactTopology& ct, BodyId c, const Vec2* x, Vec2 p) {
     return in;
 }
 
-// The force scatter of a pair in contact writes to the nodes of one node range only when the
-// scatter runs in parallel (add_contact_forces() step 3c): AllNodes takes every node, NodeRange
-// [lo, hi) the nodes of one thread. The values added are the same expressions either way.
-struct AllNodes {
-    static constexpr bool has(NodeId) { return true; }
-};
-struct NodeRange {
-    NodeId lo = 0, hi = 0;
-    bool has(NodeId i) const { return i >= lo && i < hi; }
-};
-
-template <class Nodes>
-inline void add_force(State& s, NodeId i, Vec2 f, const Nodes& nodes) {
-    if (!nodes.has(i)) return;
-    s.f[i] += f;
-    s.f_contact[i] += f;
-}
+// The forces of one pair in contact, node by node: visit(i, f) for every real node i and the
+// force f it receives, in the order of the serial loop. The parallel apply (add_contact_forces()
+// step 3b) adds them for the nodes of one range (add_pair_forces) and takes their node span
+// from the same traversal (pair_span); the values are the same expressions either way.
 
 // force f on target t: the node, or half to each end node of an edge target (theory §6.12)
-template <class Nodes>
-inline void add_target_force(const ContactTopology& ct, State& s, NodeId t, Vec2 f,
-                             const Nodes& nodes) {
+template <class Visit>
+inline void visit_target_force(const ContactTopology& ct, NodeId t, Vec2 f, Visit&& visit) {
     if (t < ct.num_real_nodes) {
-        add_force(s, t, f, nodes);
+        visit(t, f);
         return;
     }
     const auto& e = ct.boundary_edges[static_cast<size_t>(t - ct.edge_target_base)];
     const Vec2 h = 0.5 * f;
-    add_force(s, e[0], h, nodes);
-    add_force(s, e[1], h, nodes);
+    visit(e[0], h);
+    visit(e[1], h);
 }
 
 // Welded contactor (docs/theory.md §6.15, eq. 6.23): the mass-weighted mean of group g's copies
@@ -117,82 +103,66 @@ inline Vec2 weld_mean(const ContactTopology& ct, const Vec2* a, NodeId i) {
 
 // force f on real contactor node i: to the copies of its sector by their mass shares if grouped
 // (the chain rule of eq. 6.23), else to i
-template <class Nodes>
-inline void add_real_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f,
-                           const Nodes& nodes) {
+template <class Visit>
+inline void visit_real_force(const ContactTopology& ct, NodeId i, Vec2 f, Visit&& visit) {
     const int32_t g = ct.welded() ? ct.weld_group[static_cast<size_t>(i)] : -1;
     if (g < 0) {
-        add_force(s, i, f, nodes);
+        visit(i, f);
         return;
     }
     for (int32_t k = ct.weld_group_begin[static_cast<size_t>(g)];
          k < ct.weld_group_begin[static_cast<size_t>(g) + 1]; ++k)
-        add_force(s, ct.weld_copy[static_cast<size_t>(k)],
-                  ct.weld_share[static_cast<size_t>(k)] * f, nodes);
+        visit(ct.weld_copy[static_cast<size_t>(k)], ct.weld_share[static_cast<size_t>(k)] * f);
 }
 
 // force f on contact node i (virtual: to its parents with the frozen weights, spec §4.4-6)
-template <class Nodes>
-inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f,
-                           const Nodes& nodes) {
+template <class Visit>
+inline void visit_node_force(const ContactTopology& ct, NodeId i, Vec2 f, Visit&& visit) {
     if (i < ct.num_real_nodes) {
-        add_real_force(ct, s, i, f, nodes);
+        visit_real_force(ct, i, f, visit);
         return;
     }
     const size_t v = static_cast<size_t>(i - ct.num_real_nodes);
     for (int k = 0; k < 3; ++k)
-        add_real_force(ct, s, ct.virt_parent[v][k], ct.virt_weight[v][k] * f, nodes);
+        visit_real_force(ct, ct.virt_parent[v][k], ct.virt_weight[v][k] * f, visit);
 }
 
 // f on the target, -N_i f on the contactor's vertices (eq. 20): every force of one pair in
-// contact, in the order of the serial loop (target, then vertices 0, 1, 2)
-template <class Nodes>
-inline void add_pair_forces(const ContactTopology& ct, State& s, NodeId j, const PairResult& o,
-                            const Nodes& nodes) {
+// contact, target first, then vertices 0, 1, 2
+template <class Visit>
+inline void visit_pair_forces(const ContactTopology& ct, NodeId j, const PairResult& o,
+                              Visit&& visit) {
     const auto& q = ct.sub_tri[o.tri];
-    add_target_force(ct, s, j, o.f, nodes);
+    visit_target_force(ct, j, o.f, visit);
     for (int k = 0; k < 3; ++k)
-        add_node_force(ct, s, q[k], -o.N[k] * o.f, nodes);
+        visit_node_force(ct, q[k], -o.N[k] * o.f, visit);
 }
 
-// The smallest and largest real node add_pair_forces() writes to for target j and located
-// sub-triangle tri (the same traversal)
-struct NodeSpan {
-    NodeId lo = std::numeric_limits<NodeId>::max(), hi = -1;
-    void add(NodeId i) {
+// the pair's forces added to f and f_contact: of every node, or of the nodes [lo, hi) only
+inline void add_pair_forces(const ContactTopology& ct, State& s, NodeId j, const PairResult& o) {
+    visit_pair_forces(ct, j, o, [&](NodeId i, Vec2 f) {
+        s.f[i] += f;
+        s.f_contact[i] += f;
+    });
+}
+inline void add_pair_forces(const ContactTopology& ct, State& s, NodeId j, const PairResult& o,
+                            NodeId lo, NodeId hi) {
+    visit_pair_forces(ct, j, o, [&](NodeId i, Vec2 f) {
+        if (i < lo || i >= hi) return;
+        s.f[i] += f;
+        s.f_contact[i] += f;
+    });
+}
+
+// the smallest and largest real node the pair's forces go to
+inline void pair_span(const ContactTopology& ct, NodeId j, const PairResult& o, NodeId& lo,
+                      NodeId& hi) {
+    lo = std::numeric_limits<NodeId>::max();
+    hi = -1;
+    visit_pair_forces(ct, j, o, [&](NodeId i, Vec2) {
         lo = std::min(lo, i);
         hi = std::max(hi, i);
-    }
-};
-inline void span_real(const ContactTopology& ct, NodeId i, NodeSpan& sp) {
-    const int32_t g = ct.welded() ? ct.weld_group[static_cast<size_t>(i)] : -1;
-    if (g < 0) {
-        sp.add(i);
-        return;
-    }
-    for (int32_t k = ct.weld_group_begin[static_cast<size_t>(g)];
-         k < ct.weld_group_begin[static_cast<size_t>(g) + 1]; ++k)
-        sp.add(ct.weld_copy[static_cast<size_t>(k)]);
-}
-inline NodeSpan pair_span(const ContactTopology& ct, NodeId j, int32_t tri) {
-    NodeSpan sp;
-    if (j < ct.num_real_nodes) {
-        sp.add(j);
-    } else {
-        const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
-        sp.add(e[0]);
-        sp.add(e[1]);
-    }
-    for (const NodeId i : ct.sub_tri[tri]) {
-        if (i < ct.num_real_nodes) {
-            span_real(ct, i, sp);
-            continue;
-        }
-        const size_t v = static_cast<size_t>(i - ct.num_real_nodes);
-        for (int k = 0; k < 3; ++k)
-            span_real(ct, ct.virt_parent[v][k], sp);
-    }
-    return sp;
+    });
 }
 
 // the order of the per-pair lists (ContactState::active, rebase, the candidates): by (target
@@ -982,8 +952,7 @@ void add_contact_forces(const Model& m, State& s) {
                 if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c)
                     ++ia;
                 const PairResult& o = out[k];
-                if constexpr (decltype(with_forces)::value)
-                    add_pair_forces(ct, s, j, o, AllNodes{});
+                if constexpr (decltype(with_forces)::value) add_pair_forces(ct, s, j, o);
                 const Real ratio = o.h.depth_ratio;
                 max_ratio = std::max(max_ratio, ratio);
                 deep += ratio > cm.deep_ratio_limit ? 1 : 0;
@@ -1037,11 +1006,8 @@ void add_contact_forces(const Model& m, State& s) {
                     const int32_t pr = in_contact[k];
                     if (evaluate_pair(m, ct, ccs, x, xc, v, xv, vv, dt, pr, out[nc], &cursor) < 0)
                         continue;
-                    if (nthreads > 2) {  // the nodes its forces go to (for 3b)
-                        const NodeSpan sp = pair_span(ct, cand_node[pr], out[nc].tri);
-                        span[2 * nc] = sp.lo;
-                        span[2 * nc + 1] = sp.hi;
-                    }
+                    if (nthreads > 2)  // the nodes its forces go to (for 3b)
+                        pair_span(ct, cand_node[pr], out[nc], span[2 * nc], span[2 * nc + 1]);
                     in_contact[nc++] = pr;
                 }
                 chunk_count[ch] = nc - b;
@@ -1062,22 +1028,22 @@ void add_contact_forces(const Model& m, State& s) {
                 bookkeeping(std::false_type{});
             } else {
                 const int64_t nn = ct.num_real_nodes, parts = nthreads - 1;
-                const NodeRange mine{static_cast<NodeId>(nn * (t - 1) / parts),
-                                     static_cast<NodeId>(nn * t / parts)};
+                const NodeId mine_lo = static_cast<NodeId>(nn * (t - 1) / parts);
+                const NodeId mine_hi = static_cast<NodeId>(nn * t / parts);
                 for (int32_t ch = 0; ch < kPairChunks; ++ch) {
                     const int32_t b = chunk_begin(ch);
                     for (int32_t k = b; k < b + chunk_count[ch]; ++k) {
                         const NodeId j = cand_node[in_contact[k]];
                         if (parts == 1) {
-                            add_pair_forces(ct, s, j, out[k], AllNodes{});
+                            add_pair_forces(ct, s, j, out[k]);
                             continue;
                         }
                         const NodeId lo = span[2 * k], hi = span[2 * k + 1];
-                        if (hi < mine.lo || lo >= mine.hi) continue;
-                        if (lo >= mine.lo && hi < mine.hi)
-                            add_pair_forces(ct, s, j, out[k], AllNodes{});
+                        if (hi < mine_lo || lo >= mine_hi) continue;
+                        if (lo >= mine_lo && hi < mine_hi)
+                            add_pair_forces(ct, s, j, out[k]);
                         else
-                            add_pair_forces(ct, s, j, out[k], mine);
+                            add_pair_forces(ct, s, j, out[k], mine_lo, mine_hi);
                     }
                 }
             }

@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "fdem/simulate.hpp"
-#include "support/hash.hpp"
 #include "support/scenes.hpp"
 
 namespace fdem {
