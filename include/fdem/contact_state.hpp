@@ -47,9 +47,8 @@ struct ActiveContact {
 };
 
 /// Narrow-phase result of one candidate pair in one step: scratch of add_contact_forces(), which
-/// evaluates all pairs in parallel into this buffer and then applies them in pair order (the
-/// forces node range by node range, the sums serially: bitwise the same for any thread count).
-/// Meaningless between steps.
+/// evaluates all pairs in parallel into this buffer and then applies them serially in pair
+/// order (bitwise the same for any thread count). Meaningless between steps.
 struct PairResult {
     int32_t hist = -1;      ///< index into ContactState::active of the pair's history, -1: new
     int32_t tri = -1;       ///< located contactor sub-triangle; -1: not in contact
@@ -131,9 +130,6 @@ struct ContactState {
     std::vector<ActiveContact> active;
     std::vector<ActiveContact> active_next;
     std::vector<PairResult> pair_out;  ///< as in_contact, scratch (see PairResult)
-    /// as in_contact, two entries per pair: the smallest and largest real node its forces go
-    /// to (written with 2+ threads only, for the parallel force scatter); scratch
-    std::vector<NodeId> pair_span;
     /// energy continuity through a rebuild of the contact topology (theory eq. 9.26): written
     /// by rebuild_contact_topology() (probe of the old topology at x^n, sorted by (node, body)),
     /// read and cleared by the next add_contact_forces() of the same step; never saved

@@ -4,19 +4,15 @@
 //
 // Pair loop order: candidate pairs sorted by (target node, contactor body), merged with the
 // active-contact list of the previous step that is sorted the same way. The pairs are evaluated
-// in parallel (OpenMP) into a per-pair buffer and applied in pair order (the forces in parallel
-// by node range, the sums serially), so the result is bitwise the same for any thread count.
-// Baseline A (ContactAlgorithm::LegacyTriangle) goes to legacy_triangle.cpp; baseline B only
-// changes the field (field.hpp evaluate_field).
+// in parallel (OpenMP) into a per-pair buffer and applied serially in pair order, so the result
+// is bitwise the same for any thread count. Baseline A (ContactAlgorithm::LegacyTriangle) goes
+// to legacy_triangle.cpp; baseline B only changes the field (field.hpp evaluate_field).
 #include "contact/contact.hpp"
 #include "fdem/build.hpp"
-
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -65,22 +61,19 @@ bool inside_body(const ContactTopology& ct, BodyId c, const Vec2* x, Vec2 p) {
     return in;
 }
 
-// The forces of one pair in contact, node by node: visit(i, f) for every real node i and the
-// force f it receives, in the order of the serial loop. The parallel apply (add_contact_forces()
-// step 3b) adds them for the nodes of one range (add_pair_forces) and takes their node span
-// from the same traversal (pair_span); the values are the same expressions either way.
-
 // force f on target t: the node, or half to each end node of an edge target (theory §6.12)
-template <class Visit>
-inline void visit_target_force(const ContactTopology& ct, NodeId t, Vec2 f, Visit&& visit) {
+inline void add_target_force(const ContactTopology& ct, State& s, NodeId t, Vec2 f) {
     if (t < ct.num_real_nodes) {
-        visit(t, f);
+        s.f[t] += f;
+        s.f_contact[t] += f;
         return;
     }
     const auto& e = ct.boundary_edges[static_cast<size_t>(t - ct.edge_target_base)];
     const Vec2 h = 0.5 * f;
-    visit(e[0], h);
-    visit(e[1], h);
+    s.f[e[0]] += h;
+    s.f_contact[e[0]] += h;
+    s.f[e[1]] += h;
+    s.f_contact[e[1]] += h;
 }
 
 // Welded contactor (docs/theory.md §6.15, eq. 6.23): the mass-weighted mean of group g's copies
@@ -103,66 +96,31 @@ inline Vec2 weld_mean(const ContactTopology& ct, const Vec2* a, NodeId i) {
 
 // force f on real contactor node i: to the copies of its sector by their mass shares if grouped
 // (the chain rule of eq. 6.23), else to i
-template <class Visit>
-inline void visit_real_force(const ContactTopology& ct, NodeId i, Vec2 f, Visit&& visit) {
+inline void add_real_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f) {
     const int32_t g = ct.welded() ? ct.weld_group[static_cast<size_t>(i)] : -1;
     if (g < 0) {
-        visit(i, f);
+        s.f[i] += f;
+        s.f_contact[i] += f;
         return;
     }
     for (int32_t k = ct.weld_group_begin[static_cast<size_t>(g)];
-         k < ct.weld_group_begin[static_cast<size_t>(g) + 1]; ++k)
-        visit(ct.weld_copy[static_cast<size_t>(k)], ct.weld_share[static_cast<size_t>(k)] * f);
+         k < ct.weld_group_begin[static_cast<size_t>(g) + 1]; ++k) {
+        const NodeId c = ct.weld_copy[static_cast<size_t>(k)];
+        const Vec2 fc = ct.weld_share[static_cast<size_t>(k)] * f;
+        s.f[c] += fc;
+        s.f_contact[c] += fc;
+    }
 }
 
 // force f on contact node i (virtual: to its parents with the frozen weights, spec §4.4-6)
-template <class Visit>
-inline void visit_node_force(const ContactTopology& ct, NodeId i, Vec2 f, Visit&& visit) {
+inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f) {
     if (i < ct.num_real_nodes) {
-        visit_real_force(ct, i, f, visit);
+        add_real_force(ct, s, i, f);
         return;
     }
     const size_t v = static_cast<size_t>(i - ct.num_real_nodes);
     for (int k = 0; k < 3; ++k)
-        visit_real_force(ct, ct.virt_parent[v][k], ct.virt_weight[v][k] * f, visit);
-}
-
-// f on the target, -N_i f on the contactor's vertices (eq. 20): every force of one pair in
-// contact, target first, then vertices 0, 1, 2
-template <class Visit>
-inline void visit_pair_forces(const ContactTopology& ct, NodeId j, const PairResult& o,
-                              Visit&& visit) {
-    const auto& q = ct.sub_tri[o.tri];
-    visit_target_force(ct, j, o.f, visit);
-    for (int k = 0; k < 3; ++k)
-        visit_node_force(ct, q[k], -o.N[k] * o.f, visit);
-}
-
-// the pair's forces added to f and f_contact: of every node, or of the nodes [lo, hi) only
-inline void add_pair_forces(const ContactTopology& ct, State& s, NodeId j, const PairResult& o) {
-    visit_pair_forces(ct, j, o, [&](NodeId i, Vec2 f) {
-        s.f[i] += f;
-        s.f_contact[i] += f;
-    });
-}
-inline void add_pair_forces(const ContactTopology& ct, State& s, NodeId j, const PairResult& o,
-                            NodeId lo, NodeId hi) {
-    visit_pair_forces(ct, j, o, [&](NodeId i, Vec2 f) {
-        if (i < lo || i >= hi) return;
-        s.f[i] += f;
-        s.f_contact[i] += f;
-    });
-}
-
-// the smallest and largest real node the pair's forces go to
-inline void pair_span(const ContactTopology& ct, NodeId j, const PairResult& o, NodeId& lo,
-                      NodeId& hi) {
-    lo = std::numeric_limits<NodeId>::max();
-    hi = -1;
-    visit_pair_forces(ct, j, o, [&](NodeId i, Vec2) {
-        lo = std::min(lo, i);
-        hi = std::max(hi, i);
-    });
+        add_real_force(ct, s, ct.virt_parent[v][k], ct.virt_weight[v][k] * f);
 }
 
 // the order of the per-pair lists (ContactState::active, rebase, the candidates): by (target
@@ -265,7 +223,6 @@ void init_contact_state(const Model& m, State& s) {
     cs.cand.begin.reserve(4 * nb + 17);
     cs.cand.tri.reserve(16 * nb + 64);
     cs.pair_out.reserve(4 * nb + 16);
-    cs.pair_span.reserve(2 * (4 * nb + 16));
     cs.body_box.assign(static_cast<size_t>(m.num_bodies()), BodyBox{});
     cs.broad.tri_center.reserve(nt);
     cs.broad.tri_radius.reserve(nt);
@@ -888,7 +845,6 @@ void add_contact_forces(const Model& m, State& s) {
     if (cs.pair_out.size() < static_cast<size_t>(npairs)) {
         cs.pair_out.resize(static_cast<size_t>(npairs));
         cs.in_contact.resize(static_cast<size_t>(npairs));
-        cs.pair_span.resize(2 * static_cast<size_t>(npairs));
     }
     PairResult* out = cs.pair_out.data();
     int32_t* in_contact = cs.in_contact.data();
@@ -896,14 +852,51 @@ void add_contact_forces(const Model& m, State& s) {
     auto chunk_begin = [npairs](int32_t ch) {
         return static_cast<int32_t>(static_cast<int64_t>(npairs) * ch / kPairChunks);
     };
-    // 3c. bookkeeping in pair order, merged with the previous active list (both sorted by
-    //     (node, body)), releasing the histories of pairs that left contact in that merged
-    //     order: the sums are those of a serial loop. Run by one thread (thread 0, beside the
-    //     force scatter of the others: it reads the pair results, they write forces)
+    {
+        const ContactState& ccs = cs;
+        const NodeId* cand_node = cs.cand.node.data();
+        const BodyId* cand_body = cs.cand.body.data();
+        BodyBox* box = cs.body_box.data();
+        const bool boxes = cs.box_reject;
+        const int32_t nbodies = m.num_bodies();
+        // one parallel region: the boxes (a worksharing loop inside body_boxes(), whose
+        // implicit barrier completes them), then the pairs
+#pragma omp parallel if (npairs > kMinParallelPairs)
+        {
+            if (boxes) body_boxes(ct, xc, xv, box, nbodies);
+#pragma omp for schedule(static)
+            for (int32_t ch = 0; ch < kPairChunks; ++ch) {
+                const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
+                // pass 1, branch-free: the pairs the box does not reject, in order
+                int32_t n = b;
+                for (int32_t pr = b; pr < e; ++pr) {
+                    // with body ids far apart in space (shuffled numbering) the box is a cache miss
+                    if (pr + kBoxPrefetch < e)
+                        __builtin_prefetch(&box[cand_body[pr + kBoxPrefetch]]);
+                    in_contact[n] = pr;
+                    n += !box_rejects(box[cand_body[pr]], target_point(ct, x, cand_node[pr]));
+                }
+                // pass 2: locate and law of those; the pairs in contact, compacted in place
+                // (ascending pairs: their histories are looked up from a cursor)
+                int32_t nc = b;
+                size_t cursor = 0;
+                for (int32_t k = b; k < n; ++k) {
+                    const int32_t pr = in_contact[k];
+                    if (evaluate_pair(m, ct, ccs, x, xc, v, xv, vv, dt, pr, out[nc], &cursor) >= 0)
+                        in_contact[nc++] = pr;
+                }
+                chunk_count[ch] = nc - b;
+            }
+        }
+    }
+
+    // 3b. apply in pair order, merged with the previous active list (both sorted by (node,
+    //     body)), releasing the histories of pairs that left contact in that merged order: the
+    //     sums and the force accumulation are those of a serial loop
     Real stored = 0, dissipated = 0;
+    size_t ia = 0;
     cs.active_next.clear();
-    // (returns the energy the released pair adds to the dissipated sum)
-    auto release = [&](const ActiveContact& a) -> Real {
+    auto release = [&](const ActiveContact& a) {
         const BodyId bt = m.node_body[target_node(ct, a.node)];
         const ContactParams& p =
             pair_parameters(cm, m.bodies[a.body].material, m.bodies[bt].material);
@@ -926,131 +919,45 @@ void add_contact_forces(const Model& m, State& s) {
             // ended by a rebuild (eq. 9.26): the normal potential the old topology gives it at
             // x^n leaves the books here, with its spring and damping as at any separation
             const RebaseEntry* e = find_pair(cs.rebase, a.node, a.body);
-            return (e != nullptr ? e->normal : 0.0) + release_energy(p, a.h, scale, false, dt);
+            dissipated +=
+                (e != nullptr ? e->normal : 0.0) + release_energy(p, a.h, scale, false, dt);
+            return;
         }
         // a pair continued with d0 < 0 (eq. 9.26) separates at d = 0 with d - d0 > 0: its
         // normal potential leaves the books as that of a lost pair
-        return release_energy(p, a.h, scale, lost || a.h.d0 < 0, dt);
+        dissipated += release_energy(p, a.h, scale, lost || a.h.d0 < 0, dt);
     };
-    // (with_forces: also the forces of each pair, 3b, in the same loop: one thread)
-    auto bookkeeping = [&](auto with_forces) {
-        // (local sums: the force scatter's stores may alias anything captured by reference)
-        size_t ia = 0;
-        Real st = 0, di = 0, max_ratio = cs.max_depth_ratio;
-        int32_t deep = cs.deep_penetrations;
-        // only the pairs in contact, in ascending pair order: an active pair that is a candidate
-        // but not in contact is released at the same place of the merged order as before (by the
-        // while loop, before the next larger key), so the order of every sum is unchanged
-        for (int32_t ch = 0; ch < kPairChunks; ++ch) {
-            const int32_t b = chunk_begin(ch);
-            for (int32_t k = b; k < b + chunk_count[ch]; ++k) {
-                const int32_t pr = in_contact[k];
-                const NodeId j = cs.cand.node[pr];
-                const BodyId c = cs.cand.body[pr];
-                while (ia < cs.active.size() && pair_below(cs.active[ia], j, c))
-                    di += release(cs.active[ia++]);
-                if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c)
-                    ++ia;
-                const PairResult& o = out[k];
-                if constexpr (decltype(with_forces)::value) add_pair_forces(ct, s, j, o);
-                const Real ratio = o.h.depth_ratio;
-                max_ratio = std::max(max_ratio, ratio);
-                deep += ratio > cm.deep_ratio_limit ? 1 : 0;
+    // only the pairs in contact, in ascending pair order: an active pair that is a candidate
+    // but not in contact is released at the same place of the merged order as before (by the
+    // while loop, before the next larger key), so the order of every sum is unchanged
+    for (int32_t ch = 0; ch < kPairChunks; ++ch) {
+        const int32_t b = chunk_begin(ch);
+        for (int32_t k = b; k < b + chunk_count[ch]; ++k) {
+            const int32_t pr = in_contact[k];
+            const NodeId j = cs.cand.node[pr];
+            const BodyId c = cs.cand.body[pr];
+            while (ia < cs.active.size() && pair_below(cs.active[ia], j, c))
+                release(cs.active[ia++]);
+            if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) ++ia;
+            const PairResult& o = out[k];
 
-                st += o.stored;
-                di += o.dissipated;
-                cs.active_next.push_back(ActiveContact{j, c, o.h});
-            }
+            // f on the target, -N_i f on the contactor (eq. 20)
+            const auto& q = ct.sub_tri[o.tri];
+            add_target_force(ct, s, j, o.f);
+            for (int kk = 0; kk < 3; ++kk)
+                add_node_force(ct, s, q[kk], -o.N[kk] * o.f);
+
+            const Real ratio = o.h.depth_ratio;
+            cs.max_depth_ratio = std::max(cs.max_depth_ratio, ratio);
+            if (ratio > cm.deep_ratio_limit) ++cs.deep_penetrations;
+
+            stored += o.stored;
+            dissipated += o.dissipated;
+            cs.active_next.push_back(ActiveContact{j, c, o.h});
         }
-        while (ia < cs.active.size())
-            di += release(cs.active[ia++]);
-        stored = st;
-        dissipated = di;
-        cs.max_depth_ratio = max_ratio;
-        cs.deep_penetrations = deep;
-    };
-
-    {
-        const ContactState& ccs = cs;
-        const NodeId* cand_node = cs.cand.node.data();
-        const BodyId* cand_body = cs.cand.body.data();
-        BodyBox* box = cs.body_box.data();
-        const bool boxes = cs.box_reject;
-        const int32_t nbodies = m.num_bodies();
-        NodeId* span = cs.pair_span.data();
-        bool serial = false;
-        // one parallel region: the boxes (a worksharing loop inside body_boxes(), whose
-        // implicit barrier completes them), then the pairs, then their forces (3b) beside the
-        // bookkeeping (3c)
-#pragma omp parallel if (npairs > kMinParallelPairs)
-        {
-            const int nthreads = omp_get_num_threads();
-            if (boxes) body_boxes(ct, xc, xv, box, nbodies);
-#pragma omp for schedule(static)
-            for (int32_t ch = 0; ch < kPairChunks; ++ch) {
-                const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
-                // pass 1, branch-free: the pairs the box does not reject, in order
-                int32_t n = b;
-                for (int32_t pr = b; pr < e; ++pr) {
-                    // with body ids far apart in space (shuffled numbering) the box is a cache miss
-                    if (pr + kBoxPrefetch < e)
-                        __builtin_prefetch(&box[cand_body[pr + kBoxPrefetch]]);
-                    in_contact[n] = pr;
-                    n += !box_rejects(box[cand_body[pr]], target_point(ct, x, cand_node[pr]));
-                }
-                // pass 2: locate and law of those; the pairs in contact, compacted in place
-                // (ascending pairs: their histories are looked up from a cursor)
-                int32_t nc = b;
-                size_t cursor = 0;
-                for (int32_t k = b; k < n; ++k) {
-                    const int32_t pr = in_contact[k];
-                    if (evaluate_pair(m, ct, ccs, x, xc, v, xv, vv, dt, pr, out[nc], &cursor) < 0)
-                        continue;
-                    if (nthreads > 2)  // the nodes its forces go to (for 3b)
-                        pair_span(ct, cand_node[pr], out[nc], span[2 * nc], span[2 * nc + 1]);
-                    in_contact[nc++] = pr;
-                }
-                chunk_count[ch] = nc - b;
-            }
-            // (implicit barrier: every pair evaluated)
-
-            // 3b. the forces of the pairs in contact (eq. 20) in pair order, beside the
-            //     bookkeeping (3c). One thread: both. T >= 2 threads: thread 0 runs 3c, thread
-            //     r = 1 .. T-1 adds only to the real nodes [N (r-1) / (T-1), N r / (T-1)),
-            //     walking all pairs in pair order: every node receives its forces in the order
-            //     of the serial loop, so the bits do not depend on T. With T >= 3 a pair none of
-            //     whose nodes is in the range (its span, from pass 2) is skipped unread; one
-            //     with all of them in it takes the unchecked path.
-            const int t = omp_get_thread_num();
-            if (nthreads == 1) {
-                serial = true;  // both after the region (the faster code there)
-            } else if (t == 0) {
-                bookkeeping(std::false_type{});
-            } else {
-                const int64_t nn = ct.num_real_nodes, parts = nthreads - 1;
-                const NodeId mine_lo = static_cast<NodeId>(nn * (t - 1) / parts);
-                const NodeId mine_hi = static_cast<NodeId>(nn * t / parts);
-                for (int32_t ch = 0; ch < kPairChunks; ++ch) {
-                    const int32_t b = chunk_begin(ch);
-                    for (int32_t k = b; k < b + chunk_count[ch]; ++k) {
-                        const NodeId j = cand_node[in_contact[k]];
-                        if (parts == 1) {
-                            add_pair_forces(ct, s, j, out[k]);
-                            continue;
-                        }
-                        const NodeId lo = span[2 * k], hi = span[2 * k + 1];
-                        if (hi < mine_lo || lo >= mine_hi) continue;
-                        if (lo >= mine_lo && hi < mine_hi)
-                            add_pair_forces(ct, s, j, out[k]);
-                        else
-                            add_pair_forces(ct, s, j, out[k], mine_lo, mine_hi);
-                    }
-                }
-            }
-        }
-        if (serial) bookkeeping(std::true_type{});
     }
-
+    while (ia < cs.active.size())
+        release(cs.active[ia++]);
     std::swap(cs.active, cs.active_next);
     if (cs.rebase_pending) {  // consumed (eq. 9.26); keeps its capacity
         cs.rebase.clear();

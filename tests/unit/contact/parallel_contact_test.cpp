@@ -1,11 +1,8 @@
-// The contact forces of add_contact_forces() with 2+ threads (contact/contact.cpp, step 3b): one
-// thread keeps the books (history merge, energy sums, next active list) while the others add the
-// pairs' forces, each only to its range of real nodes and in pair order. Every node must receive
-// its forces in the order of the one-thread loop, so x, v, the forces and the contact energies
-// must be bitwise those of one thread for any thread count. The pack is large enough for the
-// parallel path (more candidate pairs than the narrow phase's serial threshold), its targets
-// include edge midpoints, and with 3 and 4 threads (two or three force ranges) pairs straddle a
-// range boundary; the shuffled pack (body ids far apart in space) makes such pairs common.
+// The contact phase with 1 to 4 OpenMP threads (contact/contact.cpp): the pairs are evaluated in
+// parallel and applied in pair order, so x, v, the forces and the contact energies must be bitwise
+// those of one thread for any thread count. The pack is large enough for the parallel narrow
+// phase (more candidate pairs than its serial threshold), is in saturated contact and has edge
+// midpoint targets; the shuffled pack numbers its bodies far apart in space.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -75,11 +72,11 @@ scenes::PackOptions saturated_pack(bool shuffled) {
     return o;
 }
 
-TEST(ParallelContactScatter, SameBitsForOneToFourThreads) {
+TEST(ParallelContact, SameBitsForOneToFourThreads) {
     expect_thread_independent(scenes::make_contact_pack(saturated_pack(false)));
 }
 
-TEST(ParallelContactScatter, SameBitsForOneToFourThreadsWithShuffledBodies) {
+TEST(ParallelContact, SameBitsForOneToFourThreadsWithShuffledBodies) {
     expect_thread_independent(scenes::make_contact_pack(saturated_pack(true)));
 }
 
