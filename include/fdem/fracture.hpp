@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "fdem/exact_sum.hpp"
 #include "fdem/math.hpp"
 
 namespace fdem {
@@ -108,6 +109,7 @@ struct JointState {
     std::vector<std::array<Real, 4>> f_prev;  ///< forces on nodes 0, 1 of the last call
     std::vector<std::array<Real, 4>> d_prev;  ///< end separations delta_a, delta_b of the last call
     Real total_work = 0;                      ///< sum over all calls of the work increments
+    ExactSum total_work_sum;  ///< its exact running sum (theory §4.4); total_work is it rounded
     // scratch (chunk_sums sized once by make_joint_state, jf by the first call with 2+ threads)
     /// per-joint forces on nodes 0, 1 (parallel path; empty until the first call with 2+ threads)
     std::vector<std::array<Vec2, 2>> jf;

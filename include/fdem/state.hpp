@@ -6,6 +6,7 @@
 
 #include "fdem/contact_state.hpp"
 #include "fdem/contact_topology.hpp"
+#include "fdem/exact_sum.hpp"
 #include "fdem/fracture.hpp"
 #include "fdem/math.hpp"
 
@@ -33,6 +34,16 @@ struct Energy {
         return kinetic + strain + contact - work_gravity - work_external + dissipated_viscous +
                dissipated_contact + joint + fracture;
     }
+};
+
+/// Exact running sums of the energies integrated over the steps (theory §4.4): after every step
+/// Energy::work_external, dissipated_viscous and dissipated_contact are these, rounded once, so
+/// they do not depend on how the terms were grouped (threads now, processes later). Saved in
+/// checkpoints (format 9).
+struct EnergySums {
+    ExactSum work_external;
+    ExactSum dissipated_viscous;
+    ExactSum dissipated_contact;
 };
 
 struct State {
@@ -63,6 +74,7 @@ struct State {
     std::vector<uint8_t> bc_enabled;
 
     Energy energy;
+    EnergySums energy_sums;  ///< exact sums behind Energy's integrated terms (theory §4.4)
     std::vector<Vec2> scratch_bc_v;  ///< v^{n-1/2}, then x^n, of supported nodes (step() scratch)
     /// force of each load slot (Load::slot_begin) at t^n: per edge the force on each of its two
     /// nodes, per node of a point load its share (step() scratch, rewritten every step)

@@ -893,7 +893,10 @@ void add_contact_forces(const Model& m, State& s) {
     // 3b. apply in pair order, merged with the previous active list (both sorted by (node,
     //     body)), releasing the histories of pairs that left contact in that merged order: the
     //     sums and the force accumulation are those of a serial loop
-    Real stored = 0, dissipated = 0;
+    // energies per pair, summed exactly (theory §4.4): the dissipation straight into the run's
+    // running sum
+    ExactSum stored;
+    ExactSum& dissipated = s.energy_sums.dissipated_contact;
     size_t ia = 0;
     cs.active_next.clear();
     auto release = [&](const ActiveContact& a) {
@@ -919,13 +922,13 @@ void add_contact_forces(const Model& m, State& s) {
             // ended by a rebuild (eq. 9.26): the normal potential the old topology gives it at
             // x^n leaves the books here, with its spring and damping as at any separation
             const RebaseEntry* e = find_pair(cs.rebase, a.node, a.body);
-            dissipated +=
-                (e != nullptr ? e->normal : 0.0) + release_energy(p, a.h, scale, false, dt);
+            dissipated.add((e != nullptr ? e->normal : 0.0) +
+                           release_energy(p, a.h, scale, false, dt));
             return;
         }
         // a pair continued with d0 < 0 (eq. 9.26) separates at d = 0 with d - d0 > 0: its
         // normal potential leaves the books as that of a lost pair
-        dissipated += release_energy(p, a.h, scale, lost || a.h.d0 < 0, dt);
+        dissipated.add(release_energy(p, a.h, scale, lost || a.h.d0 < 0, dt));
     };
     // only the pairs in contact, in ascending pair order: an active pair that is a candidate
     // but not in contact is released at the same place of the merged order as before (by the
@@ -951,8 +954,8 @@ void add_contact_forces(const Model& m, State& s) {
             cs.max_depth_ratio = std::max(cs.max_depth_ratio, ratio);
             if (ratio > cm.deep_ratio_limit) ++cs.deep_penetrations;
 
-            stored += o.stored;
-            dissipated += o.dissipated;
+            stored.add(o.stored);
+            if (o.dissipated != 0) dissipated.add(o.dissipated);  // (exact: zeros add nothing)
             cs.active_next.push_back(ActiveContact{j, c, o.h});
         }
     }
@@ -964,8 +967,8 @@ void add_contact_forces(const Model& m, State& s) {
         cs.rebase_pending = false;
     }
 
-    s.energy.contact = stored;
-    s.energy.dissipated_contact += dissipated;
+    s.energy.contact = stored.value();
+    s.energy.dissipated_contact = dissipated.value();
     cs.active_contacts = static_cast<int32_t>(cs.active.size());
     cs.total_deep_penetrations += cs.deep_penetrations;
     cs.total_lost_inside += cs.lost_inside;

@@ -444,13 +444,15 @@ Real add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& l
 
     // 2. scatter in couple order: the same sums whatever the thread count
     ls.active = 0;
-    Real dissipated = 0, stored = 0;
+    // energies summed exactly (theory §4.4), the dissipation into the run's running sum
+    ExactSum stored;
+    ExactSum& dissipated = s.energy_sums.dissipated_contact;
     for (int32_t k = 0; k < nc; ++k) {
         const auto& na = m.tri_nodes[couples[k].a];
         const auto& nb = m.tri_nodes[couples[k].b];
         const Vec2* f = cf + 6 * static_cast<size_t>(k);
-        dissipated += cdi[k];
-        stored += cst[k];
+        if (cdi[k] != 0) dissipated.add(cdi[k]);  // (most couples are apart: skip the zeros)
+        if (cst[k] != 0) stored.add(cst[k]);
         bool any = false;
         for (int i = 0; i < 3; ++i) {
             any = any || f[i].x != 0 || f[i].y != 0;
@@ -461,8 +463,8 @@ Real add_legacy_triangle_forces(const Model& m, State& s, LegacyTriangleState& l
         }
         if (any) ++ls.active;
     }
-    s.energy.dissipated_contact += dissipated;
-    return stored;
+    s.energy.dissipated_contact = dissipated.value();
+    return stored.value();
 }
 
 }  // namespace fdem

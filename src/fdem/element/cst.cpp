@@ -9,6 +9,8 @@
 // bitwise the same results); other CPUs (and CstKernel::Portable) use the loops below.
 #include "element/cst.hpp"
 
+#include "fdem/exact_sum.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -248,17 +250,21 @@ ElementPass add_internal_forces(const Model& m, State& s) {
         }
     }
 
-    // reduce in chunk order: the same sums whatever the thread count
+    // the chunk partials combined exactly (theory §4.4): the same sums whatever the thread count
+    // or grouping of the chunks; the smallest det F in chunk order (the first of equal ones)
     ElementPass out;
+    ExactSum strain, viscous;
     for (int32_t k = 0; k < nc; ++k) {
         const Real* slot = part + kChunkSlots * static_cast<size_t>(k);
-        out.strain_energy += slot[0];
-        out.viscous_power += slot[1];
+        strain.add(slot[0]);
+        viscous.add(slot[1]);
         if (slot[2] < out.min_jacobian) {
             out.min_jacobian = slot[2];
             out.min_jacobian_tri = static_cast<TriId>(slot[3]);
         }
     }
+    out.strain_energy = strain.value();
+    out.viscous_power = viscous.value();
     return out;
 }
 

@@ -615,11 +615,12 @@ JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, 
     }
     JointPass out;
     int32_t bad = -1;
-    Real work = 0;
+    // chunk partials combined exactly (theory §4.4): any grouping of the chunks gives these bits
+    ExactSum elastic;
     for (int32_t c = 0; c < nc; ++c) {
         const Real* slot = s.chunk_sums.data() + kSlots * static_cast<size_t>(c);
-        work += slot[0];
-        out.elastic_energy += slot[1];
+        s.total_work_sum.add(slot[0]);
+        elastic.add(slot[1]);
         out.newly_broken += static_cast<int32_t>(slot[2]);
         out.softening += static_cast<int32_t>(slot[3]);
         if (bad < 0 && slot[4] >= 0) bad = static_cast<int32_t>(slot[4]);
@@ -630,7 +631,8 @@ JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, 
                               "joint length below 1e-9 of its reference length or not finite "
                               "(node positions non-finite or a face collapsed); reduce dt");
     }
-    s.total_work += work;
+    if (need_energy) out.elastic_energy = elastic.value();
+    s.total_work = s.total_work_sum.value();
     out.work = s.total_work;
     if (need_energy) out.fracture = s.total_work - out.elastic_energy;  // eq. 9.19
     return out;

@@ -1,6 +1,8 @@
 // External loads (docs/theory.md §4.1): time functions, nodal forces and their power.
 #include "integrate/loads.hpp"
 
+#include "fdem/exact_sum.hpp"
+
 #include <algorithm>
 
 namespace fdem {
@@ -83,18 +85,18 @@ void add_load_forces(const Model& m, const Vec2* slot_f, Vec2* f) {
 }
 
 Real load_power(const Model& m, const Vec2* slot_f, const Vec2* v) {
-    Real p = 0;
+    ExactSum p;  // exact (theory §4.4): independent of how the slots are grouped
     for (const Load& ld : m.loads) {
         const Vec2* in = slot_f + ld.slot_begin;
         if (ld.kind == LoadKind::Force) {
             for (size_t i = 0; i < ld.nodes.size(); ++i)
-                p += dot(in[i], v[ld.nodes[i]]);
+                p.add(dot(in[i], v[ld.nodes[i]]));
         } else {
             for (size_t e = 0; e < ld.edges.size(); ++e)
-                p += dot(in[e], v[ld.edges[e][0]] + v[ld.edges[e][1]]);
+                p.add(dot(in[e], v[ld.edges[e][0]] + v[ld.edges[e][1]]));
         }
     }
-    return p;
+    return p.value();
 }
 
 }  // namespace fdem

@@ -172,7 +172,8 @@ void apply_kicks(const Model& m, State& s) {
                 const Vec2 old = s.v[i];
                 if (k.has_x) s.v[i].x = k.velocity.x;
                 if (k.has_y) s.v[i].y = k.velocity.y;
-                s.energy.work_external += 0.5 * m.node_mass[i] * (norm2(s.v[i]) - norm2(old));
+                s.energy_sums.work_external.add(0.5 * m.node_mass[i] *
+                                                (norm2(s.v[i]) - norm2(old)));
             }
         }
         ++s.next_kick;
@@ -304,18 +305,19 @@ void step(const Model& m, State& s) {
     } else {
         update.template operator()<false>();
     }
-    // reduce in block order: the same sums whatever the thread count
-    Real kinetic2 = 0, gravity_work = 0, damping_power = 0;
+    // the block partials combined exactly (theory §4.4): the same sums whatever the thread count
+    // or grouping of the blocks
+    ExactSum kinetic2, gravity_work, damping_power;
     for (NodeId blk = 0; blk < n_blocks; ++blk) {
         const Real* slot = part + kNodeSlots * static_cast<size_t>(blk);
-        kinetic2 += slot[0];
-        gravity_work += slot[1];
-        damping_power += slot[2];
+        kinetic2.add(slot[0]);
+        gravity_work.add(slot[1]);
+        damping_power.add(slot[2]);
     }
 
     // prescribed velocity components overwrite v^{n+1/2}; the support reaction
     // R = m (v_new - v_free)/dt does the work R . v^n dt (theory eq. 4.3)
-    Real support_work = 0;
+    ExactSum support_work_sum;
     {
         size_t k = 0;
         const Real tm = s.time + 0.5 * dt;
@@ -339,8 +341,8 @@ void step(const Model& m, State& s) {
                 const Vec2 vn_free = first ? v_old : 0.5 * (v_old + v_free);
                 const Vec2 vn = first ? v_old : 0.5 * (v_old + v_new);
                 s.bc_reaction[slot] = reaction;  // theory eq. 8.1 (bodies.csv)
-                support_work += dot(reaction, vn) * dt_v;
-                kinetic2 += mi * (norm2(vn) - norm2(vn_free));
+                support_work_sum.add(dot(reaction, vn) * dt_v);
+                kinetic2.add(mi * (norm2(vn) - norm2(vn_free)));
                 v[i] = v_new;
             }
         }
@@ -359,25 +361,32 @@ void step(const Model& m, State& s) {
         }
     }
 
+    const Real support_work = support_work_sum.value();
     s.energy.time = s.time;
     if (s.need_energy) {  // else stale (State::need_energy)
-        s.energy.kinetic = 0.5 * kinetic2;
+        s.energy.kinetic = 0.5 * kinetic2.value();
         s.energy.strain = pass.strain_energy;
-        s.energy.work_gravity = gravity_work;
+        s.energy.work_gravity = gravity_work.value();
     }
     // the reaction R^n acts over [t^{n-1/2}, t^{n+1/2}]: half of its work belongs before t^n, the
-    // other half is booked with the next step (theory eq. 4.3)
+    // other half is booked with the next step (theory eq. 4.3); the integrated terms go into
+    // their exact running sums (theory §4.4), rounded once below
+    ExactSum& work_external = s.energy_sums.work_external;
     if (loaded) {
         // loads: 1/2 F^n . (x^{n+1} - x^n) belongs after t^n, booked next step (theory eq. 4.7)
         const Real load_work_pending = 0.5 * dt * load_power(m, load_f, v);
-        s.energy.work_external +=
-            s.energy.work_external_pending + 0.5 * support_work + load_work_now;
+        work_external.add(s.energy.work_external_pending);
+        work_external.add(0.5 * support_work);
+        work_external.add(load_work_now);
         s.energy.work_external_pending = 0.5 * support_work + load_work_pending;
     } else {
-        s.energy.work_external += s.energy.work_external_pending + 0.5 * support_work;
+        work_external.add(s.energy.work_external_pending);
+        work_external.add(0.5 * support_work);
         s.energy.work_external_pending = 0.5 * support_work;
     }
-    s.energy.dissipated_viscous += (pass.viscous_power + damping_power) * dt_v;
+    s.energy_sums.dissipated_viscous.add((pass.viscous_power + damping_power.value()) * dt_v);
+    s.energy.work_external = work_external.value();
+    s.energy.dissipated_viscous = s.energy_sums.dissipated_viscous.value();
 
     s.time += dt;
     ++s.step;

@@ -145,6 +145,17 @@ void put(Sink& o, const Energy& e) {
     put(o, e.dissipated_contact);
 }
 
+// an exact sum (theory §4.4): its normalised words, so equal sums write equal bytes
+template <class Sink>
+void put(Sink& o, const ExactSum& e) {
+    ExactSum n = e;
+    n.normalise();
+    for (int k = 0; k < ExactSum::kWords; ++k)
+        put(o, n.words()[k]);
+    put(o, n.has_special());
+    put(o, n.special());
+}
+
 // ---- the payload: one function per direction, fields in the same order --------------------
 
 template <class Sink>
@@ -175,6 +186,10 @@ void put_state(Sink& o, const State& s) {
     put(o, js.f_prev);
     put(o, js.d_prev);
     put(o, js.total_work);
+    put(o, js.total_work_sum);  // since format 11, as energy_sums
+    put(o, s.energy_sums.work_external);
+    put(o, s.energy_sums.dissipated_viscous);
+    put(o, s.energy_sums.dissipated_contact);
     // scratch_bc_v, scratch_sums: rewritten before being read in every step (not saved)
 
     const ContactState& c = s.contact;
@@ -320,6 +335,18 @@ public:
         get(n);
         if (min_size > 0 && n > remaining() / min_size) fail("an array length is corrupt");
         return n;
+    }
+
+    /// An exact sum (put(ExactSum)): 67 words, the flag, the non-finite part.
+    void get(ExactSum& e) {
+        int64_t w[ExactSum::kWords];
+        for (int64_t& x : w)
+            get(x);
+        bool special = false;
+        double value = 0;
+        get(special);
+        get(value);
+        e.assign(w, special, value);
     }
 
     /// A vector of any length (assign keeps the capacity reserved by make_state()).
@@ -576,6 +603,10 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
         r.get_sized(js.f_prev, nj, "joints.f_prev");
         r.get_sized(js.d_prev, nj, "joints.d_prev");
         r.get(js.total_work);
+        r.get(js.total_work_sum);
+        r.get(s.energy_sums.work_external);
+        r.get(s.energy_sums.dissipated_viscous);
+        r.get(s.energy_sums.dissipated_contact);
         for (size_t j = 0; j < nj; ++j) {
             if (static_cast<uint8_t>(js.status[j]) > 2 || static_cast<uint8_t>(js.mode[j]) > 3)
                 r.fail("a joint status or mode is out of range (corrupt file)");

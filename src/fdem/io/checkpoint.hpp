@@ -30,7 +30,7 @@
 namespace fdem {
 
 /// Version of the checkpoint layout; bump it whenever the payload changes.
-constexpr uint32_t kCheckpointFormat = 10;  // 2: baseline A couples (ContactState::legacy)
+constexpr uint32_t kCheckpointFormat = 11;  // 2: baseline A couples (ContactState::legacy)
                                             // 3: Energy::work_external_pending
                                             // 4: PairHistory::f_damp
                                             // 5: RunProgress::impulses (bodies.csv)
@@ -38,6 +38,8 @@ constexpr uint32_t kCheckpointFormat = 10;  // 2: baseline A couples (ContactSta
                                             // 7: Energy::joint, fracture (issue #14)
                                             // 8: JointState history (State::joints)
                                             // 9: PairHistory::d0 (birth depth, eq. 9.25)
+                                            // 11: State::energy_sums, JointState::
+                                            //     total_work_sum (exact sums, theory §4.4)
                                             // 10: PairHistory::sub (eq. 9.27)
 
 /// CLI bookkeeping that must survive a restart so output continues where it stopped.

@@ -299,7 +299,10 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // weld_group_begin, weld_copy, weld_share, weld_plain (theory eq. 6.23): part of
     // State::topology, not saved
     // 2368 -> 2424: ContactState 848 -> 904 above
-    EXPECT_EQ(sizeof(State), 2424u) << "State changed: update io/checkpoint.cpp";
+    // 2424 -> 4632: State::energy_sums (3 ExactSum of 552 B) and JointState::total_work_sum,
+    // the exact running sums of the integrated energies (theory §4.4), saved since format 11
+    EXPECT_EQ(sizeof(ExactSum), 552u) << "ExactSum changed: update io/checkpoint.cpp";
+    EXPECT_EQ(sizeof(State), 4632u) << "State changed: update io/checkpoint.cpp";
 }
 
 // Loads (theory §4.1): the half of the load work that belongs after t^n travels in
