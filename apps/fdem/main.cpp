@@ -470,6 +470,18 @@ int run(const RunOptions& opt) {
 
 }  // namespace
 
+// The number of processes mpirun (Open MPI, or a PMI launcher such as MPICH's or Slurm's) started
+// this program as one of; 1 when it was not started by an MPI launcher.
+int launcher_processes() {
+    for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"}) {
+        if (const char* v = std::getenv(var)) {
+            const int n = std::atoi(v);
+            if (n > 0) return n;
+        }
+    }
+    return 1;
+}
+
 int main(int argc, char** argv) {
     // line-buffered stdout: a batch log (stdout to a file) shows each line when it is printed,
     // not at exit
@@ -529,7 +541,22 @@ int main(int argc, char** argv) {
     ro.out_given = run_cmd->count("--out") > 0;
     ro.end_time_given = run_cmd->count("--end-time") > 0;
     try {
-        if (*run_cmd) return run(ro);
+        if (*run_cmd) {
+            // P copies of a serial run would each run the whole scenario and write the same
+            // files: refuse instead (issue #15: the distributed run is not there yet)
+            const int procs = launcher_processes();
+            if (procs > 1) {
+                throw fdem::InputError(
+                    {}, "mpirun",
+                    fmt::format("this fdem was started as one of {} MPI processes, but it runs a "
+                                "scenario in one process only (distributed runs: issue #15, not "
+                                "yet implemented); each process would run the whole scenario and "
+                                "write the same files. Run it without mpirun (or with -np 1); "
+                                "use --threads for the cores of one machine",
+                                procs));
+            }
+            return run(ro);
+        }
         if (*check_cmd) {
             const fdem::Scenario sc = fdem::load_scenario(check_path);
             print_summary(sc);

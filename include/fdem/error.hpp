@@ -30,11 +30,13 @@ public:
     const SourceLocation& location() const { return loc_; }
     const std::string& key() const { return key_; }      ///< offending key or entity ("" if none)
     const std::string& message() const { return msg_; }  ///< message without location prefix
+    const std::string& source_line() const { return line_; }  ///< the echoed line ("" if none)
 
 private:
     SourceLocation loc_;
     std::string key_;
     std::string msg_;
+    std::string line_;
 };
 
 /// Runtime numerical failure: names the step, the time, the entity and a remedy.
@@ -44,11 +46,13 @@ public:
     int64_t step() const { return step_; }
     double time() const { return time_; }
     const std::string& entity() const { return entity_; }
+    const std::string& message() const { return msg_; }  ///< the message after the entity
 
 private:
     int64_t step_;
     double time_;
     std::string entity_;
+    std::string msg_;
 };
 
 }  // namespace fdem

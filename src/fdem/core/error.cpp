@@ -38,13 +38,15 @@ InputError::InputError(SourceLocation loc, std::string key, std::string message,
     : std::runtime_error(format_input_error(loc, message, source_line)),
       loc_(std::move(loc)),
       key_(std::move(key)),
-      msg_(std::move(message)) {}
+      msg_(std::move(message)),
+      line_(std::move(source_line)) {}
 
 SimulationError::SimulationError(int64_t step, double time, std::string entity,
                                  std::string message)
     : std::runtime_error(fmt::format("step {} (t = {:.6g} s): {}: {}", step, time, entity, message)),
       step_(step),
       time_(time),
-      entity_(std::move(entity)) {}
+      entity_(std::move(entity)),
+      msg_(std::move(message)) {}
 
 }  // namespace fdem

@@ -1,0 +1,60 @@
+// Communication between the processes of a run (issue #15; spec parallel-and-python.md D1, D8,
+// D9). An interface, so that the library never includes <mpi.h>: SerialComm (one process) is
+// part of the library; MpiComm (parallel/mpi/mpi_comm.hpp) is in the fdem_mpi library, built only
+// with -DFDEM_MPI=ON. Every call is collective: all processes of the run make it, in the same
+// order.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "fdem/exact_sum.hpp"
+
+namespace fdem {
+
+class Comm {
+public:
+    virtual ~Comm() = default;
+    virtual int rank() const = 0;
+    virtual int size() const = 0;
+    /// The global exact sum (theory §4.4) of every process's s, on every process: integer sums
+    /// of the words, then one rounding by the caller, so the bits do not depend on the process
+    /// count (spec D8.2). Never MPI_SUM on doubles (D7.5).
+    virtual void sum(ExactSum& s) const = 0;
+    /// Order-free reductions (D8.1): the same result for any process count.
+    virtual double max(double x) const = 0;
+    virtual double min(double x) const = 0;
+    virtual int64_t sum(int64_t n) const = 0;
+    /// root's text on every process
+    virtual void broadcast(std::string& text, int root) const = 0;
+    virtual void barrier() const = 0;
+};
+
+/// One process: every reduction is the identity.
+class SerialComm final : public Comm {
+public:
+    int rank() const override { return 0; }
+    int size() const override { return 1; }
+    void sum(ExactSum&) const override {}
+    double max(double x) const override { return x; }
+    double min(double x) const override { return x; }
+    int64_t sum(int64_t n) const override { return n; }
+    void broadcast(std::string&, int) const override {}
+    void barrier() const override {}
+};
+
+/// Run fn on every process. If it throws on any process, every process throws the same error
+/// (spec D9): that of the lowest failing rank, with its type (InputError, SimulationError, or
+/// std::runtime_error for anything else) and the same what(), so the exit code and the message
+/// are those of a one-process run. fn itself must not make collective calls that a failing
+/// process would skip (that would hang): it is for the work each process does on its own
+/// (reading input, checking its part), between collectives.
+void run_collectively(const Comm& comm, const std::function<void()>& fn);
+
+/// The wire form of an error (used by run_collectively; exposed for its tests): an exception
+/// to text, and the text back to the same exception type with the same what().
+std::string encode_error(const std::exception& e);
+[[noreturn]] void throw_decoded_error(const std::string& text);
+
+}  // namespace fdem

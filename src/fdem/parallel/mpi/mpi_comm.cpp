@@ -1,0 +1,93 @@
+// Comm over MPI: see parallel/mpi/mpi_comm.hpp.
+#include "parallel/mpi/mpi_comm.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace fdem {
+
+MpiSession::MpiSession(int* argc, char*** argv) {
+    int provided = 0;
+    MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+    if (provided < MPI_THREAD_FUNNELED) {
+        MPI_Finalize();
+        throw std::runtime_error("the MPI library does not provide MPI_THREAD_FUNNELED");
+    }
+}
+
+MpiSession::~MpiSession() {
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized) MPI_Finalize();
+}
+
+MpiComm::MpiComm(MPI_Comm parent) {
+    MPI_Comm_dup(parent, &comm_);
+    MPI_Comm_rank(comm_, &rank_);
+    MPI_Comm_size(comm_, &size_);
+}
+
+MpiComm::~MpiComm() {
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized && comm_ != MPI_COMM_NULL) MPI_Comm_free(&comm_);
+}
+
+void MpiComm::sum(ExactSum& s) const {
+    // the normalised words (digits < 2^32, so any realistic process count cannot overflow an
+    // int64) and the counts of +inf, -inf and NaN terms: integer sums, associative and exact
+    constexpr int kW = ExactSum::kWords;
+    s.normalise();
+    int64_t buf[kW + 3] = {};
+    for (int k = 0; k < kW; ++k)
+        buf[k] = s.words()[k];
+    if (s.has_special()) {
+        const double v = s.special();
+        if (std::isnan(v)) {
+            buf[kW + 2] = 1;
+        } else {
+            buf[kW + (v > 0 ? 0 : 1)] = 1;
+        }
+    }
+    MPI_Allreduce(MPI_IN_PLACE, buf, kW + 3, MPI_INT64_T, MPI_SUM, comm_);
+    const int64_t pos = buf[kW], neg = buf[kW + 1], nan = buf[kW + 2];
+    const bool special = pos + neg + nan > 0;
+    double value = 0;
+    if (nan > 0 || (pos > 0 && neg > 0)) {
+        value = std::numeric_limits<double>::quiet_NaN();
+    } else if (pos > 0) {
+        value = std::numeric_limits<double>::infinity();
+    } else if (neg > 0) {
+        value = -std::numeric_limits<double>::infinity();
+    }
+    s.assign(buf, special, value);
+}
+
+double MpiComm::max(double x) const {
+    MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, comm_);
+    return x;
+}
+
+double MpiComm::min(double x) const {
+    MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MIN, comm_);
+    return x;
+}
+
+int64_t MpiComm::sum(int64_t n) const {
+    MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPI_INT64_T, MPI_SUM, comm_);
+    return n;
+}
+
+void MpiComm::broadcast(std::string& text, int root) const {
+    uint64_t n = text.size();
+    MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm_);
+    text.resize(n);
+    if (n > 0) MPI_Bcast(text.data(), static_cast<int>(n), MPI_CHAR, root, comm_);
+}
+
+void MpiComm::barrier() const {
+    MPI_Barrier(comm_);
+}
+
+}  // namespace fdem

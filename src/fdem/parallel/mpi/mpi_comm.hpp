@@ -1,0 +1,46 @@
+// Comm over MPI (issue #15, spec parallel-and-python.md D1): the only headers that include
+// <mpi.h>, built into the fdem_mpi library with -DFDEM_MPI=ON.
+#pragma once
+
+#include <mpi.h>
+
+#include "parallel/comm.hpp"
+
+namespace fdem {
+
+/// MPI_Init_thread(MPI_THREAD_FUNNELED) for the lifetime of the object (only the thread that
+/// created it calls MPI; OpenMP threads inside a process never do), then MPI_Finalize.
+class MpiSession {
+public:
+    MpiSession(int* argc, char*** argv);
+    ~MpiSession();
+    MpiSession(const MpiSession&) = delete;
+    MpiSession& operator=(const MpiSession&) = delete;
+};
+
+/// A duplicate of a communicator (MPI_COMM_WORLD by default), so fdem's messages never mix with
+/// a caller's.
+class MpiComm final : public Comm {
+public:
+    explicit MpiComm(MPI_Comm parent = MPI_COMM_WORLD);
+    ~MpiComm() override;
+    MpiComm(const MpiComm&) = delete;
+    MpiComm& operator=(const MpiComm&) = delete;
+
+    int rank() const override { return rank_; }
+    int size() const override { return size_; }
+    void sum(ExactSum& s) const override;
+    double max(double x) const override;
+    double min(double x) const override;
+    int64_t sum(int64_t n) const override;
+    void broadcast(std::string& text, int root) const override;
+    void barrier() const override;
+    MPI_Comm handle() const { return comm_; }
+
+private:
+    MPI_Comm comm_ = MPI_COMM_NULL;
+    int rank_ = 0;
+    int size_ = 1;
+};
+
+}  // namespace fdem

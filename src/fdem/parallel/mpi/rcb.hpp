@@ -1,0 +1,22 @@
+// Recursive coordinate bisection by Zoltan (issue #15; spec parallel-and-python.md D10): the
+// partitioner of the distributed run. Built into fdem_mpi with -DFDEM_MPI=ON.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "fdem/math.hpp"
+#include "parallel/mpi/mpi_comm.hpp"
+
+namespace fdem {
+
+/// The part (0 .. parts - 1) of each of this process's points (x, weight, a global id unique
+/// over all processes), from Zoltan's RCB over the points of every process (LB_METHOD = RCB,
+/// DETERMINISTIC = 1: the same input on the same process count gives the same parts). Collective.
+/// Throws std::runtime_error if Zoltan reports an error.
+std::vector<int> rcb_parts(const MpiComm& comm, std::span<const Vec2> x,
+                           std::span<const double> weight, std::span<const uint64_t> gid,
+                           int parts);
+
+}  // namespace fdem
