@@ -268,6 +268,72 @@ ElementPass add_internal_forces(const Model& m, State& s) {
     return out;
 }
 
+ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_owner,
+                             int32_t rank) {
+    const ElementSchedule& sc = m.element_schedule;
+    const int32_t ncolors = static_cast<int32_t>(sc.color_begin.size()) - 1;
+    ElementSubset out;
+    out.color_begin.push_back(0);
+    for (int32_t c = 0; c < ncolors; ++c) {
+        for (int32_t k = sc.color_begin[c]; k < sc.color_begin[c + 1]; ++k) {
+            const TriId b = sc.chunk_tris[k][0], e = sc.chunk_tris[k][1];
+            bool needed = false;
+            for (TriId t = b; t < e && !needed; ++t) {
+                for (NodeId n : m.tri_nodes[t])
+                    needed = needed || node_owner[n] == rank;
+            }
+            if (!needed) continue;
+            out.chunks.push_back(k);
+            out.counts_energy.push_back(node_owner[m.tri_nodes[b][0]] == rank ? 1 : 0);
+        }
+        out.color_begin.push_back(static_cast<int32_t>(out.chunks.size()));
+    }
+    return out;
+}
+
+ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSubset& subset) {
+    const ElementSchedule& sc = m.element_schedule;
+    const int32_t nk = static_cast<int32_t>(subset.chunks.size());
+    const int32_t ncolors = static_cast<int32_t>(subset.color_begin.size()) - 1;
+    if (s.scratch_sums.size() < kChunkSlots * static_cast<size_t>(nk)) {
+        s.scratch_sums.resize(kChunkSlots * static_cast<size_t>(nk));  // first call only
+    }
+    Real* part = s.scratch_sums.data();
+    const Vec2* x = s.x.data();
+    const Vec2* v = s.v.data();
+    Vec2* f = s.f.data();
+    const bool with_energy = s.need_energy;
+    // as add_internal_forces(m, s): colors in order, chunks of a color on disjoint nodes
+#pragma omp parallel if (nk >= kMinParallelChunks)
+    for (int32_t c = 0; c < ncolors; ++c) {
+#pragma omp for schedule(dynamic, 1)
+        for (int32_t i = subset.color_begin[c]; i < subset.color_begin[c + 1]; ++i) {
+            const int32_t k = subset.chunks[static_cast<size_t>(i)];
+            ElementPass p;
+            material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy, p);
+            Real* slot = part + kChunkSlots * static_cast<size_t>(i);
+            slot[0] = p.strain_energy;
+            slot[1] = p.viscous_power;
+            slot[2] = p.min_jacobian;
+            slot[3] = static_cast<Real>(p.min_jacobian_tri);
+        }
+    }
+    // the counted chunks' partials, exactly (theory §4.4); the smallest det F in chunk order
+    ElementSubsetPass out;
+    for (int32_t i = 0; i < nk; ++i) {
+        if (!subset.counts_energy[static_cast<size_t>(i)]) continue;
+        const Real* slot = part + kChunkSlots * static_cast<size_t>(i);
+        out.strain_energy.add(slot[0]);
+        out.viscous_power.add(slot[1]);
+        if (slot[2] < out.min_jacobian) {
+            out.min_jacobian = slot[2];
+            out.min_jacobian_tri = static_cast<TriId>(slot[3]);
+            out.min_jacobian_chunk = subset.chunks[static_cast<size_t>(i)];
+        }
+    }
+    return out;
+}
+
 ElementSchedule build_element_schedule(const Model& m) {
     // chunks: at most kChunkTris contiguous triangles of one material of one non-fixed body.
     // Runs of small bodies (fewer than kChunkTris triangles each, e.g. particles or blocks of a

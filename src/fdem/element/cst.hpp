@@ -2,7 +2,9 @@
 #pragma once
 
 #include <limits>
+#include <vector>
 
+#include "fdem/exact_sum.hpp"
 #include "fdem/model.hpp"
 #include "fdem/state.hpp"
 
@@ -29,6 +31,40 @@ ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Ve
 /// first use, so it allocates only once). The strain energy is summed only when s.need_energy
 /// (otherwise 0); the forces are bitwise the same either way.
 ElementPass add_internal_forces(const Model& m, State& s);
+
+/// A subset of the element schedule for one process of a distributed run (issue #15, spec
+/// parallel-and-python.md D7.1 "owner computes"): every chunk that holds a triangle of a node the
+/// process owns, in schedule order (so color by color), and which of them the process counts in
+/// the energies and the smallest det F (each chunk exactly one process: the owner of its first
+/// triangle's first node). Running these chunks adds to every owned node the forces of all its
+/// triangles in the serial order, so an owned node's force is bitwise the serial one; forces on
+/// the other nodes are partial and belong to their owners.
+struct ElementSubset {
+    std::vector<int32_t> chunks;         ///< schedule chunk ids, ascending
+    std::vector<int32_t> color_begin;    ///< chunks of color c: [color_begin[c], color_begin[c+1])
+    std::vector<uint8_t> counts_energy;  ///< per entry of chunks: 1 = this process sums it
+};
+
+/// The subset of `rank` for an assignment of every node to a process (node_owner[n] in
+/// [0, processes)). Nodes of fixed bodies may have any owner (their bodies have no chunks).
+ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_owner,
+                             int32_t rank);
+
+/// What a process's subset pass reports: exact sums, so that adding those of all processes
+/// (Comm::sum) and rounding gives the serial pass's bits (theory §4.4), and the smallest det F
+/// with its chunk, the key that makes the minimum over processes the serial one (the first in
+/// chunk order).
+struct ElementSubsetPass {
+    ExactSum strain_energy;  ///< over the counted chunks (0 without s.need_energy)
+    ExactSum viscous_power;
+    Real min_jacobian = std::numeric_limits<Real>::infinity();
+    TriId min_jacobian_tri = kNone;
+    int32_t min_jacobian_chunk = -1;
+};
+
+/// add_internal_forces(m, s) over the chunks of `subset` only: the same kernel, colors and
+/// per-chunk partial sums; energies and the smallest det F over the chunks it counts.
+ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSubset& subset);
 
 /// Cut the triangles of the non-fixed bodies into chunks and color them so that chunks of one
 /// color share no node (greedy, in chunk order). Depends only on the model, never on the thread
