@@ -12,6 +12,9 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#ifdef FDEM_HAVE_MPI
+#include "parallel/mpi/mpi_comm.hpp"
+#endif
 #include <cstring>
 #include <memory>
 
@@ -326,6 +329,10 @@ const CLI::Validator kFinitePositive(
     },
     "SECONDS > 0", "finite positive");
 
+// The processes of a distributed run (mpirun -np P with P > 1, builds with -DFDEM_MPI=ON);
+// nullptr for a one-process run.
+const fdem::Comm* g_comm = nullptr;
+
 int run(const RunOptions& opt) {
     using clock = std::chrono::steady_clock;
     fdem::Scenario sc = fdem::load_scenario(opt.scenario);
@@ -352,6 +359,7 @@ int run(const RunOptions& opt) {
     fdem::Simulation sim(std::move(sc));
     const fdem::Model& m = sim.model();
     const fdem::State& s = sim.state();
+    if (g_comm != nullptr) sim.distribute(*g_comm);  // before open_output: process 0 writes
     sim.open_output("", opt.out_given ? std::string("--out") : std::string());
     const std::string out = sim.output_dir();
     if (!opt.restart.empty()) {
@@ -542,17 +550,35 @@ int main(int argc, char** argv) {
     ro.end_time_given = run_cmd->count("--end-time") > 0;
     try {
         if (*run_cmd) {
-            // P copies of a serial run would each run the whole scenario and write the same
-            // files: refuse instead (issue #15: the distributed run is not there yet)
             const int procs = launcher_processes();
+#ifdef FDEM_HAVE_MPI
+            if (procs > 1) {
+                // a distributed run (issue #15 M2a, docs/parallel.md): every process loads the
+                // scenario and steps its share; only process 0 prints and writes, every process
+                // ends with the same exit code (input and simulation errors arise on all alike)
+                static fdem::MpiSession session(&argc, &argv);
+                static const fdem::MpiComm comm;
+                if (comm.rank() != 0) {
+                    if (std::freopen("/dev/null", "w", stdout) == nullptr ||
+                        std::freopen("/dev/null", "w", stderr) == nullptr) {
+                        return kExitSimulation;
+                    }
+                }
+                g_comm = &comm;
+                return run(ro);
+            }
+#endif
+            // P copies of a serial run would each run the whole scenario and write the same
+            // files: refuse instead
             if (procs > 1) {
                 throw fdem::InputError(
                     {}, "mpirun",
-                    fmt::format("this fdem was started as one of {} MPI processes, but it runs a "
-                                "scenario in one process only (distributed runs: issue #15, not "
-                                "yet implemented); each process would run the whole scenario and "
-                                "write the same files. Run it without mpirun (or with -np 1); "
-                                "use --threads for the cores of one machine",
+                    fmt::format("this fdem was started as one of {} MPI processes, but it was "
+                                "built without MPI and runs a scenario in one process only; each "
+                                "process would run the whole scenario and write the same files. "
+                                "Run it without mpirun (or with -np 1), use --threads for the "
+                                "cores of one machine, or build with -DFDEM_MPI=ON "
+                                "(docs/parallel.md)",
                                 procs));
             }
             return run(ro);

@@ -49,6 +49,8 @@ struct WrittenFile {
     Real time = 0;  ///< [s]
 };
 
+class Comm;  // src/fdem/parallel/comm.hpp (distributed runs, issue #15)
+
 class Simulation {
 public:
     /// Called after a step (see run()); return false to stop the run after that step.
@@ -91,6 +93,13 @@ public:
     /// The folder must be writable (a probe file is created and removed): InputError key
     /// "output.dir" located at `origin` (e.g. "--out"; "" = name()) if not.
     void open_output(const std::string& dir = "", const std::string& origin = "");
+    /// Run as one process of comm (issue #15, docs/parallel.md "M2a"): every process makes this
+    /// Simulation from the same input and calls distribute() before open_output() and the first
+    /// step; each then updates its share of the nodes and elements, and the State stays the same
+    /// on all processes, bitwise the one-process run's. Only process 0 writes files; the others
+    /// keep the output bookkeeping. comm must outlive the Simulation. Every later call that
+    /// steps is collective.
+    void distribute(const Comm& comm);
     bool output_open() const;
     const std::string& output_dir() const;  ///< "" while output is not open
     int64_t frames_written() const;         ///< output rows/frames so far (also before restart)

@@ -5,16 +5,16 @@
 set(mpi_dir ${CMAKE_CURRENT_LIST_DIR})
 
 # Without MPI: a serial fdem started by an MPI launcher refuses (exit 2) instead of running the
-# whole scenario once per process (the launcher's variable, no mpirun needed; label input)
-add_test(NAME cli.refuses_mpi_launch_exits_2
-         COMMAND ${CMAKE_COMMAND} -E env OMPI_COMM_WORLD_SIZE=3
-                 ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=2
-                 "-DARGS=run;${PROJECT_SOURCE_DIR}/examples/03_contact_slide/scenario.toml;--quiet"
-                 "-DREGEX=error: this fdem was started as one of 3 MPI processes, but it runs a scenario in one process only"
-                 -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_exit.cmake)
-set_tests_properties(cli.refuses_mpi_launch_exits_2 PROPERTIES LABELS input)
-
+# whole scenario once per process (the launcher's variable, no mpirun needed; label input). An
+# MPI build runs it distributed instead (the tests below).
 if(NOT FDEM_MPI)
+  add_test(NAME cli.refuses_mpi_launch_exits_2
+           COMMAND ${CMAKE_COMMAND} -E env OMPI_COMM_WORLD_SIZE=3
+                   ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=2
+                   "-DARGS=run;${PROJECT_SOURCE_DIR}/examples/03_contact_slide/scenario.toml;--quiet"
+                   "-DREGEX=error: this fdem was started as one of 3 MPI processes, but it was built without MPI"
+                   -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_exit.cmake)
+  set_tests_properties(cli.refuses_mpi_launch_exits_2 PROPERTIES LABELS input)
   return()
 endif()
 
@@ -33,12 +33,51 @@ foreach(np 1 2 3 4)
   set_tests_properties(mpi.unit_np${np} PROPERTIES LABELS mpi TIMEOUT 120 PROCESSORS 2)
 endforeach()
 
-# the same refusal under a real mpirun: every process exits 2 with the message
-add_test(NAME mpi.cli_refuses_np2_exits_2
+# T1: `mpirun -np P fdem run` is bitwise the one-process run (state hash, history.csv,
+# bodies.csv, last VTU frame) for P = 1..4, ~400 steps of: a cantilever under gravity (one body
+# cut between processes), frictional contact (03), 100 particles (04), composite elements (05),
+# follower pressure with mass damping (06), jointed disc between platens (08), and a ring that
+# fractures into 62 fragments (11: 170 joints broken by 1e-4 s)
+set(mpi_out ${CMAKE_CURRENT_BINARY_DIR}/mpi_out)
+set(ex ${PROJECT_SOURCE_DIR}/examples)
+foreach(case "01_cantilever:0.008" "03_contact_slide:0.002" "04_particles:1.6e-4"
+        "05_composite:0.002" "06_pressurised_ring:0.03" "08_brazilian_disc:4e-6"
+        "11_impact_fragmentation:1e-4")
+  string(REPLACE ":" ";" case "${case}")
+  list(GET case 0 name)
+  list(GET case 1 end)
+  add_test(NAME mpi.same_as_serial.${name}
+           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                   ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                   ${ex}/${name}/scenario.toml ${mpi_out}/${name} "1 2 3 4" --end-time ${end})
+  set_tests_properties(mpi.same_as_serial.${name} PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
+                       PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+endforeach()
+# T2: two OpenMP threads inside each of two processes
+add_test(NAME mpi.same_as_serial.two_threads_per_process
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV} OMP_NUM_THREADS=2
+                 ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${ex}/03_contact_slide/scenario.toml ${mpi_out}/threads "2" --end-time 0.002)
+set_tests_properties(mpi.same_as_serial.two_threads_per_process PROPERTIES LABELS mpi TIMEOUT 300
+                     PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+# T7 / D9: failures are the one-process run's: exit code, message (printed once) and
+# failure.vtu; an input error exits 2 on every process
+foreach(case "penetration:2:1" "crush:3:1" "bad_load:2:2")
+  string(REPLACE ":" ";" case "${case}")
+  list(GET case 0 name)
+  list(GET case 1 np)
+  list(GET case 2 rc)
+  add_test(NAME mpi.same_failure.${name}
+           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                   ${mpi_dir}/same_failure.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                   ${PROJECT_SOURCE_DIR}/tests/cli/${name}.toml ${mpi_out}/fail_${name} ${np} ${rc})
+  set_tests_properties(mpi.same_failure.${name} PROPERTIES LABELS mpi TIMEOUT 120
+                       PASS_REGULAR_EXPRESSION "OK: the same failure")
+endforeach()
+# T4: a checkpoint written by 2 processes restarts on 3 and on 1 with the uninterrupted hash
+add_test(NAME mpi.restart_on_another_process_count
          COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
-                 ${CMAKE_COMMAND} "-DFDEM=${MPIEXEC_EXECUTABLE}" -DRC=2
-                 "-DARGS=--oversubscribe;--bind-to;none;--mca;btl;self,vader;-np;2;$<TARGET_FILE:fdem_cli>;run;${PROJECT_SOURCE_DIR}/examples/03_contact_slide/scenario.toml;--quiet"
-                 "-DREGEX=started as one of 2 MPI processes"
-                 "-DCOUNT_REGEX=started as one of 2 MPI" -DCOUNT=2
-                 -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_exit.cmake)
-set_tests_properties(mpi.cli_refuses_np2_exits_2 PROPERTIES LABELS mpi TIMEOUT 120)
+                 ${mpi_dir}/restart_other_count.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${ex}/03_contact_slide/scenario.toml ${mpi_out}/restart 0.002 0.004)
+set_tests_properties(mpi.restart_on_another_process_count PROPERTIES LABELS mpi TIMEOUT 300
+                     PASS_REGULAR_EXPRESSION "OK: restart on another process count is bitwise")

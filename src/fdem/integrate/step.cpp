@@ -30,6 +30,7 @@
 #include "integrate/fracture_update.hpp"
 #include "integrate/loads.hpp"
 #include "integrate/node_update.hpp"
+#include "parallel/distributed.hpp"
 
 namespace fdem {
 
@@ -42,7 +43,12 @@ constexpr NodeId kNodeBlock = 2048;
 /// Node loops run on one thread below this many nodes (fork/join costs more than the work).
 constexpr NodeId kMinParallelNodes = 4 * kNodeBlock;
 
-/// Partial sums per node block in State::scratch_sums: kinetic2, gravity work, damping power.
+// kNodeGroup (parallel/distributed.hpp): the node update's energy terms are summed naively over
+// each group of kNodeGroup consecutive node ids, then the groups exactly (theory §4.4). A
+// distributed run owns whole groups, so its sums are the serial ones (issue #15).
+static_assert(kNodeBlock % kNodeGroup == 0);
+
+/// Partial sums per node group in State::scratch_sums: kinetic2, gravity work, damping power.
 constexpr size_t kNodeSlots = 3;
 
 // A support active at t = 0 imposes its velocity from the start: it is the initial velocity of
@@ -91,10 +97,10 @@ State make_state(const Model& m, Real dt) {
         n_load_slots += static_cast<size_t>(ld.num_slots());
     s.scratch_load.assign(n_load_slots, Vec2{});
     s.bc_reaction.assign(n_bc, Vec2{});
-    // partial sums: 4 per element chunk (element/cst.cpp), 3 per node block (below)
-    const size_t n_blocks = (m.node_x0.size() + kNodeBlock - 1) / kNodeBlock;
+    // partial sums: 4 per element chunk (element/cst.cpp), 3 per node group (below)
+    const size_t n_groups = (m.node_x0.size() + kNodeGroup - 1) / kNodeGroup;
     s.scratch_sums.assign(
-        std::max(4 * static_cast<size_t>(m.element_schedule.num_chunks()), kNodeSlots * n_blocks),
+        std::max(4 * static_cast<size_t>(m.element_schedule.num_chunks()), kNodeSlots * n_groups),
         0.0);
     init_fracture_state(m, s);  // joint history, pre-broken joints, sectors, fragments
     init_contact_state(m, s);
@@ -120,43 +126,47 @@ NodeKernel g_node_kernel = NodeKernel::Auto;
 // The AVX-512 kernel (integrate/node_update_simd.cpp) does the same per block, bitwise.
 template <bool kGravity, bool kDamped, bool kEnergy>
 void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2* __restrict v,
-                  const Vec2* __restrict f, Real* __restrict part) {
-    const NodeId nn = m.num_nodes();
-    const NodeId n_blocks = (nn + kNodeBlock - 1) / kNodeBlock;
+                  const Vec2* __restrict f, Real* __restrict part, NodeId first_node,
+                  NodeId end_node) {
+    // nodes [first_node, end_node), whole groups (all nodes, or a process's share)
+    const NodeId nn = end_node;
+    const NodeId n_blocks = (end_node - first_node + kNodeBlock - 1) / kNodeBlock;
     const Real* __restrict mass = m.node_mass.data();
     const Real* __restrict inv_mass = m.node_inv_mass.data();
     const Vec2* __restrict x0 = m.node_x0.data();
     const bool simd = node_update_uses_avx512();
     const NodeArrays arrays{x, v, f, mass, inv_mass, x0};
-#pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
+#pragma omp parallel for schedule(static) if (end_node - first_node >= kMinParallelNodes)
     for (NodeId blk = 0; blk < n_blocks; ++blk) {
-        Real kin = 0, grav = 0, damp = 0;
-        const NodeId end = std::min(nn, (blk + 1) * kNodeBlock);
-        Real* slot = part + kNodeSlots * static_cast<size_t>(blk);
-        if (simd) {
-            detail::node_block_avx512(arrays, u, kGravity, kDamped, kEnergy, blk * kNodeBlock, end,
-                                      slot);
-            continue;
+        const NodeId block_end = std::min(nn, first_node + (blk + 1) * kNodeBlock);
+        for (NodeId g0 = first_node + blk * kNodeBlock; g0 < block_end; g0 += kNodeGroup) {
+            Real kin = 0, grav = 0, damp = 0;
+            const NodeId end = std::min(nn, g0 + kNodeGroup);
+            Real* slot = part + kNodeSlots * static_cast<size_t>(g0 / kNodeGroup);
+            if (simd) {
+                detail::node_block_avx512(arrays, u, kGravity, kDamped, kEnergy, g0, end, slot);
+                continue;
+            }
+            for (NodeId i = g0; i < end; ++i) {
+                const Real inv = inv_mass[i];
+                if (inv == 0) continue;  // nodes of fixed bodies
+                const Real mi = mass[i];
+                const Vec2 v_old = v[i];
+                Vec2 fi = f[i] + mi * u.g;
+                if constexpr (kDamped) fi -= (u.c * mi) * v_old;
+                const Vec2 v_new = v_old + (u.dt_v * inv) * fi;
+                const Vec2 vn = u.first ? v_old : 0.5 * (v_old + v_new);  // v^n (theory eq. 5.2)
+                if constexpr (kEnergy) kin += mi * norm2(vn);
+                // work of gravity up to x^n: the exact potential change (theory eq. 4.2)
+                if constexpr (kGravity && kEnergy) grav += mi * dot(u.g, x[i] - x0[i]);
+                if constexpr (kDamped) damp += u.c * mi * dot(v_old, vn);
+                v[i] = v_new;
+                x[i] += u.dt * v_new;
+            }
+            slot[0] = kin;
+            slot[1] = grav;
+            slot[2] = damp;
         }
-        for (NodeId i = blk * kNodeBlock; i < end; ++i) {
-            const Real inv = inv_mass[i];
-            if (inv == 0) continue;  // nodes of fixed bodies
-            const Real mi = mass[i];
-            const Vec2 v_old = v[i];
-            Vec2 fi = f[i] + mi * u.g;
-            if constexpr (kDamped) fi -= (u.c * mi) * v_old;
-            const Vec2 v_new = v_old + (u.dt_v * inv) * fi;
-            const Vec2 vn = u.first ? v_old : 0.5 * (v_old + v_new);  // v^n (theory eq. 5.2)
-            if constexpr (kEnergy) kin += mi * norm2(vn);
-            // work of gravity up to x^n: the exact potential change (theory eq. 4.2)
-            if constexpr (kGravity && kEnergy) grav += mi * dot(u.g, x[i] - x0[i]);
-            if constexpr (kDamped) damp += u.c * mi * dot(v_old, vn);
-            v[i] = v_new;
-            x[i] += u.dt * v_new;
-        }
-        slot[0] = kin;
-        slot[1] = grav;
-        slot[2] = damp;
     }
 }
 
@@ -191,7 +201,12 @@ bool node_update_uses_avx512() {
     return g_node_kernel == NodeKernel::Auto && supported;
 }
 
-void step(const Model& m, State& s) {
+namespace {
+
+// The step; with a plan, as one process of a distributed run (parallel/distributed.hpp): the
+// element pass over the plan's chunks, the node update and the supports over its nodes, then the
+// owned parts exchanged so that every process holds the whole State again.
+void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm) {
     const NodeId nn = m.num_nodes();
     const Real dt = s.dt;
     Vec2* x = s.x.data();
@@ -229,7 +244,27 @@ void step(const Model& m, State& s) {
     }
 
     // 3. internal forces (parallel over the element schedule, deterministic)
-    const ElementPass pass = add_internal_forces(m, s);
+    ElementPass pass;
+    if (plan == nullptr) {
+        pass = add_internal_forces(m, s);
+    } else {
+        // owner computes (spec D7.1); energies as exact sums over the processes (theory §4.4)
+        const ElementSubsetPass sp = add_internal_forces(m, s, plan->elements);
+        ExactSum sums[2] = {sp.strain_energy, sp.viscous_power};
+        comm->sum(sums, 2);
+        pass.strain_energy = sums[0].value();
+        pass.viscous_power = sums[1].value();
+        // the smallest det F over the processes, ties to the smallest chunk: the serial one
+        pass.min_jacobian = comm->min(sp.min_jacobian);
+        if (!(pass.min_jacobian > 0)) {  // the same branch on every process
+            const bool mine = sp.min_jacobian == pass.min_jacobian;
+            const Real chunk = comm->min(mine ? sp.min_jacobian_chunk : 1e300);
+            pass.min_jacobian_tri = static_cast<TriId>(
+                comm->min(mine && sp.min_jacobian_chunk == chunk ? sp.min_jacobian_tri : 1e300));
+            // the failure below: failure.vtu shows the forces of the serial run at this point
+            comm->allgatherv(&f[0].x, plan->node_counts, plan->node_displs);
+        }
+    }
     if (pass.min_jacobian_tri != kNone && !(pass.min_jacobian > 0)) {
         const TriId t = pass.min_jacobian_tri;
         throw SimulationError(
@@ -243,8 +278,15 @@ void step(const Model& m, State& s) {
     // W_frac are evaluated only with need_energy, else they keep their last values (stale, like
     // the strain energy)
     if (!m.joints.nodes.empty()) {
-        const JointPass jp =
-            joint_forces(m.joints, s.joints, s.x, s.f, s.need_energy, s.step, s.time);
+        JointPass jp;
+        try {
+            jp = joint_forces(m.joints, s.joints, s.x, s.f, s.need_energy, s.step, s.time);
+        } catch (const SimulationError&) {
+            // every process fails alike (the joints are computed everywhere): failure.vtu shows
+            // the forces of the serial run at this point
+            if (plan != nullptr) comm->allgatherv(&f[0].x, plan->node_counts, plan->node_displs);
+            throw;
+        }
         if (s.need_energy) {
             s.energy.joint = jp.elastic_energy;  // eq. 9.18
             s.energy.fracture = jp.fracture;     // eq. 9.19
@@ -281,23 +323,25 @@ void step(const Model& m, State& s) {
     // the first step starts from v^0 and advances half a step to v^{1/2} (theory eq. 5.1), so a
     // constant acceleration is integrated exactly: x^n = x^0 + v^0 t + a t^2 / 2
     const Real dt_v = first ? 0.5 * dt : dt;
-    const NodeId n_blocks = (nn + kNodeBlock - 1) / kNodeBlock;
-    if (s.scratch_sums.size() < kNodeSlots * static_cast<size_t>(n_blocks)) {
-        s.scratch_sums.resize(kNodeSlots * static_cast<size_t>(n_blocks));  // first call only
+    const NodeId n_groups = (nn + kNodeGroup - 1) / kNodeGroup;
+    if (s.scratch_sums.size() < kNodeSlots * static_cast<size_t>(n_groups)) {
+        s.scratch_sums.resize(kNodeSlots * static_cast<size_t>(n_groups));  // first call only
     }
+    const NodeId own_begin = plan != nullptr ? plan->node_begin : 0;
+    const NodeId own_end = plan != nullptr ? plan->node_end : nn;
     Real* part = s.scratch_sums.data();
     const Real* inv_mass = m.node_inv_mass.data();
     const bool gravity = g.x != 0 || g.y != 0;
     const NodeUpdate u{dt, dt_v, c, g, first};
     const auto update = [&]<bool kEnergy>() {
         if (gravity && mass_damped) {
-            update_nodes<true, true, kEnergy>(m, u, x, v, f, part);
+            update_nodes<true, true, kEnergy>(m, u, x, v, f, part, own_begin, own_end);
         } else if (gravity) {
-            update_nodes<true, false, kEnergy>(m, u, x, v, f, part);
+            update_nodes<true, false, kEnergy>(m, u, x, v, f, part, own_begin, own_end);
         } else if (mass_damped) {
-            update_nodes<false, true, kEnergy>(m, u, x, v, f, part);
+            update_nodes<false, true, kEnergy>(m, u, x, v, f, part, own_begin, own_end);
         } else {
-            update_nodes<false, false, kEnergy>(m, u, x, v, f, part);
+            update_nodes<false, false, kEnergy>(m, u, x, v, f, part, own_begin, own_end);
         }
     };
     if (s.need_energy) {
@@ -305,11 +349,12 @@ void step(const Model& m, State& s) {
     } else {
         update.template operator()<false>();
     }
-    // the block partials combined exactly (theory §4.4): the same sums whatever the thread count
-    // or grouping of the blocks
+    // the group partials combined exactly (theory §4.4): the same sums whatever the thread count
+    // or the grouping of the groups (over processes too)
     ExactSum kinetic2, gravity_work, damping_power;
-    for (NodeId blk = 0; blk < n_blocks; ++blk) {
-        const Real* slot = part + kNodeSlots * static_cast<size_t>(blk);
+    for (NodeId grp = own_begin / kNodeGroup; grp < (own_end + kNodeGroup - 1) / kNodeGroup;
+         ++grp) {
+        const Real* slot = part + kNodeSlots * static_cast<size_t>(grp);
         kinetic2.add(slot[0]);
         gravity_work.add(slot[1]);
         damping_power.add(slot[2]);
@@ -332,6 +377,7 @@ void step(const Model& m, State& s) {
                 const Vec2 v_old = s.scratch_bc_v[slot];
                 s.bc_reaction[slot] = {};
                 if (!active || m.node_inv_mass[i] == 0) continue;
+                if (plan != nullptr && plan->node_owner[i] != plan->rank) continue;  // its owner's
                 const Real mi = m.node_mass[i];
                 const Vec2 v_free = v[i];
                 Vec2 v_new = v_free;
@@ -356,11 +402,40 @@ void step(const Model& m, State& s) {
             for (NodeId i : bc.nodes) {
                 const Vec2 x_old = s.scratch_bc_v[n_bc + k++];
                 if (inv_mass[i] == 0) continue;
+                if (plan != nullptr && plan->node_owner[i] != plan->rank) continue;
                 x[i] = x_old + dt * v[i];
             }
         }
     }
 
+    if (plan != nullptr) {
+        // every process holds the whole State again: the owned x, v and f (element forces of
+        // other nodes were partial), and the supports' reactions; f_contact is computed alike
+        // everywhere (contact is not distributed yet)
+        comm->allgatherv(&x[0].x, plan->node_counts, plan->node_displs);
+        comm->allgatherv(&v[0].x, plan->node_counts, plan->node_displs);
+        comm->allgatherv(&f[0].x, plan->node_counts, plan->node_displs);
+        if (!plan->bc_order.empty()) {
+            double* buf = plan->bc_buffer.data();
+            const size_t b = static_cast<size_t>(plan->bc_displs[plan->rank]) / 2;
+            const size_t e = b + static_cast<size_t>(plan->bc_counts[plan->rank]) / 2;
+            for (size_t j = b; j < e; ++j) {
+                const Vec2 r = s.bc_reaction[static_cast<size_t>(plan->bc_order[j])];
+                buf[2 * j] = r.x;
+                buf[2 * j + 1] = r.y;
+            }
+            comm->allgatherv(buf, plan->bc_counts, plan->bc_displs);
+            for (size_t j = 0; j < plan->bc_order.size(); ++j)
+                s.bc_reaction[static_cast<size_t>(plan->bc_order[j])] = {buf[2 * j],
+                                                                         buf[2 * j + 1]};
+        }
+        ExactSum sums[4] = {kinetic2, gravity_work, damping_power, support_work_sum};
+        comm->sum(sums, 4);
+        kinetic2 = sums[0];
+        gravity_work = sums[1];
+        damping_power = sums[2];
+        support_work_sum = sums[3];
+    }
     const Real support_work = support_work_sum.value();
     s.energy.time = s.time;
     if (s.need_energy) {  // else stale (State::need_energy)
@@ -390,6 +465,61 @@ void step(const Model& m, State& s) {
 
     s.time += dt;
     ++s.step;
+}
+
+}  // namespace
+
+void step(const Model& m, State& s) {
+    step_impl(m, s, nullptr, nullptr);
+}
+
+void step_distributed(const Model& m, State& s, const StepPlan& plan, const Comm& comm) {
+    step_impl(m, s, &plan, &comm);
+}
+
+StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs) {
+    StepPlan p;
+    p.rank = rank;
+    p.procs = procs;
+    const NodeId nn = m.num_nodes();
+    const NodeId groups = (nn + kNodeGroup - 1) / kNodeGroup;
+    p.node_owner.assign(static_cast<size_t>(nn), 0);
+    p.node_counts.assign(static_cast<size_t>(procs), 0);
+    p.node_displs.assign(static_cast<size_t>(procs), 0);
+    for (int32_t r = 0; r < procs; ++r) {
+        // contiguous ranges of whole groups, about the same number of groups each
+        const NodeId b =
+            std::min(nn, static_cast<NodeId>(int64_t{groups} * r / procs) * kNodeGroup);
+        const NodeId e =
+            std::min(nn, static_cast<NodeId>(int64_t{groups} * (r + 1) / procs) * kNodeGroup);
+        for (NodeId i = b; i < e; ++i)
+            p.node_owner[static_cast<size_t>(i)] = r;
+        p.node_displs[static_cast<size_t>(r)] = 2 * b;
+        p.node_counts[static_cast<size_t>(r)] = 2 * (e - b);
+        if (r == rank) {
+            p.node_begin = b;
+            p.node_end = e;
+        }
+    }
+    p.elements = element_subset(m, p.node_owner, rank);
+    // support slots (the order of Model::bcs and their nodes) grouped by the owner of the node
+    std::vector<std::vector<int32_t>> by_owner(static_cast<size_t>(procs));
+    int32_t slot = 0;
+    for (const BoundaryCondition& bc : m.bcs) {
+        for (NodeId i : bc.nodes)
+            by_owner[static_cast<size_t>(p.node_owner[static_cast<size_t>(i)])].push_back(slot++);
+    }
+    p.bc_counts.assign(static_cast<size_t>(procs), 0);
+    p.bc_displs.assign(static_cast<size_t>(procs), 0);
+    for (int32_t r = 0; r < procs; ++r) {
+        p.bc_displs[static_cast<size_t>(r)] = 2 * static_cast<int>(p.bc_order.size());
+        p.bc_counts[static_cast<size_t>(r)] =
+            2 * static_cast<int>(by_owner[static_cast<size_t>(r)].size());
+        p.bc_order.insert(p.bc_order.end(), by_owner[static_cast<size_t>(r)].begin(),
+                          by_owner[static_cast<size_t>(r)].end());
+    }
+    p.bc_buffer.assign(2 * p.bc_order.size(), 0.0);
+    return p;
 }
 
 void check_state(const Model& m, const State& s) {

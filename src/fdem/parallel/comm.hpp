@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "fdem/exact_sum.hpp"
 
@@ -21,7 +22,13 @@ public:
     /// The global exact sum (theory §4.4) of every process's s, on every process: integer sums
     /// of the words, then one rounding by the caller, so the bits do not depend on the process
     /// count (spec D8.2). Never MPI_SUM on doubles (D7.5).
-    virtual void sum(ExactSum& s) const = 0;
+    virtual void sum(ExactSum& s) const { sum(&s, 1); }
+    /// n exact sums in one exchange
+    virtual void sum(ExactSum* s, int n) const = 0;
+    /// In place: process p's part data[displs[p] .. displs[p] + counts[p]) (doubles) on every
+    /// process (an all-gather of contiguous parts).
+    virtual void allgatherv(double* data, const std::vector<int>& counts,
+                            const std::vector<int>& displs) const = 0;
     /// Order-free reductions (D8.1): the same result for any process count.
     virtual double max(double x) const = 0;
     virtual double min(double x) const = 0;
@@ -36,7 +43,8 @@ class SerialComm final : public Comm {
 public:
     int rank() const override { return 0; }
     int size() const override { return 1; }
-    void sum(ExactSum&) const override {}
+    void sum(ExactSum*, int) const override {}
+    void allgatherv(double*, const std::vector<int>&, const std::vector<int>&) const override {}
     double max(double x) const override { return x; }
     double min(double x) const override { return x; }
     int64_t sum(int64_t n) const override { return n; }

@@ -20,6 +20,7 @@
 #include "integrate/run_checks.hpp"
 #include "io/checkpoint.hpp"
 #include "io/fracture_output.hpp"
+#include "parallel/distributed.hpp"
 
 namespace fdem {
 
@@ -57,6 +58,11 @@ struct Simulation::Impl {
         fmt::print(stderr, "{}\n", text);
     };
     std::string restart_from;  ///< folder of the checkpoint restored ("" = none)
+    /// distributed run (distribute()): the communicator and this process's share of the step;
+    /// only process 0 writes files (writes)
+    const Comm* comm = nullptr;
+    std::unique_ptr<StepPlan> plan;
+    bool writes = true;
 
     Impl(std::string n, Model&& m, RunSettings r)
         : name(std::move(n)),
@@ -69,7 +75,7 @@ struct Simulation::Impl {
     // The writers are created at the first run, after a possible restore_checkpoint(), so that a
     // restart continues history.csv instead of truncating it.
     void ensure_writers() {
-        if (out_dir.empty() || history) return;
+        if (out_dir.empty() || history || !writes) return;
         const fs::path out = out_dir;
         if (!restart_from.empty()) adopt_earlier_output();
         history = restarted
@@ -153,6 +159,12 @@ struct Simulation::Impl {
     }
 
     void write_output(bool last) {
+        if (!writes) {  // another process writes; keep the same bookkeeping
+            ++prog.frame;
+            prog.next_output +=
+                run.output.interval > 0 ? run.output.interval : run.end_time / 100.0;
+            return;
+        }
         const fs::path out = out_dir;
         history->write(model, state);
         if (bodies) {
@@ -178,6 +190,7 @@ struct Simulation::Impl {
     }
 
     void write_checkpoint_file(const std::string& path) {
+        if (!writes) return;
         write_checkpoint(path, model, state, prog);
         last_checkpoint = {path, state.step, state.time};
     }
@@ -201,7 +214,11 @@ struct Simulation::Impl {
                         (ck && t_next >= next_checkpoint - 0.5 * s.dt);
         const int64_t step_before = s.step;
         const Real time_before = s.time;
-        fdem::step(m, s);
+        if (plan) {
+            step_distributed(m, s, *plan, *comm);
+        } else {
+            fdem::step(m, s);
+        }
         if (fracture) fracture->after_step(m, s, step_before, time_before);
         if (resultants) resultants->accumulate(m, s, prog.impulses);
         const std::string warning = check_run(m, s, run, prog.energy);
@@ -228,7 +245,7 @@ struct Simulation::Impl {
     void write_failure() {
         failure = {};
         failure_error.clear();
-        if (out_dir.empty()) return;
+        if (out_dir.empty() || !writes) return;
         const std::string path = (fs::path(out_dir) / "failure.vtu").string();
         try {
             write_vtu(path, model, state);
@@ -296,6 +313,11 @@ const std::string& Simulation::name() const {
 void Simulation::open_output(const std::string& dir, const std::string& origin) {
     Impl& I = *impl_;
     const fs::path out = dir.empty() ? I.run.output.dir : dir;
+    if (!I.writes) {  // process 0 creates and writes the folder
+        I.out_dir = out.string();
+        I.run.output.dir = I.out_dir;
+        return;
+    }
     std::error_code ec;
     fs::create_directories(out, ec);
     if (ec) {
@@ -320,6 +342,13 @@ void Simulation::open_output(const std::string& dir, const std::string& origin) 
     I.close_writers();
     I.out_dir = out.string();
     I.run.output.dir = I.out_dir;
+}
+
+void Simulation::distribute(const Comm& comm) {
+    Impl& I = *impl_;
+    I.comm = &comm;
+    I.writes = comm.rank() == 0;
+    I.plan = std::make_unique<StepPlan>(make_step_plan(I.model, comm.rank(), comm.size()));
 }
 
 bool Simulation::output_open() const {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 namespace fdem {
 
@@ -34,34 +35,49 @@ MpiComm::~MpiComm() {
     if (!finalized && comm_ != MPI_COMM_NULL) MPI_Comm_free(&comm_);
 }
 
-void MpiComm::sum(ExactSum& s) const {
-    // the normalised words (digits < 2^32, so any realistic process count cannot overflow an
-    // int64) and the counts of +inf, -inf and NaN terms: integer sums, associative and exact
+void MpiComm::sum(ExactSum* sums, int n) const {
+    // per sum: the normalised words (digits < 2^32, so any realistic process count cannot
+    // overflow an int64) and the counts of +inf, -inf and NaN terms: integer sums, associative
+    // and exact; all n in one MPI_Allreduce
     constexpr int kW = ExactSum::kWords;
-    s.normalise();
-    int64_t buf[kW + 3] = {};
-    for (int k = 0; k < kW; ++k)
-        buf[k] = s.words()[k];
-    if (s.has_special()) {
-        const double v = s.special();
-        if (std::isnan(v)) {
-            buf[kW + 2] = 1;
-        } else {
-            buf[kW + (v > 0 ? 0 : 1)] = 1;
+    constexpr int kStride = kW + 3;
+    std::vector<int64_t> buf(static_cast<size_t>(kStride) * static_cast<size_t>(n), 0);
+    for (int j = 0; j < n; ++j) {
+        ExactSum& s = sums[j];
+        int64_t* b = buf.data() + static_cast<size_t>(kStride) * static_cast<size_t>(j);
+        s.normalise();
+        for (int k = 0; k < kW; ++k)
+            b[k] = s.words()[k];
+        if (s.has_special()) {
+            const double v = s.special();
+            if (std::isnan(v)) {
+                b[kW + 2] = 1;
+            } else {
+                b[kW + (v > 0 ? 0 : 1)] = 1;
+            }
         }
     }
-    MPI_Allreduce(MPI_IN_PLACE, buf, kW + 3, MPI_INT64_T, MPI_SUM, comm_);
-    const int64_t pos = buf[kW], neg = buf[kW + 1], nan = buf[kW + 2];
-    const bool special = pos + neg + nan > 0;
-    double value = 0;
-    if (nan > 0 || (pos > 0 && neg > 0)) {
-        value = std::numeric_limits<double>::quiet_NaN();
-    } else if (pos > 0) {
-        value = std::numeric_limits<double>::infinity();
-    } else if (neg > 0) {
-        value = -std::numeric_limits<double>::infinity();
+    MPI_Allreduce(MPI_IN_PLACE, buf.data(), kStride * n, MPI_INT64_T, MPI_SUM, comm_);
+    for (int j = 0; j < n; ++j) {
+        const int64_t* b = buf.data() + static_cast<size_t>(kStride) * static_cast<size_t>(j);
+        const int64_t pos = b[kW], neg = b[kW + 1], nan = b[kW + 2];
+        const bool special = pos + neg + nan > 0;
+        double value = 0;
+        if (nan > 0 || (pos > 0 && neg > 0)) {
+            value = std::numeric_limits<double>::quiet_NaN();
+        } else if (pos > 0) {
+            value = std::numeric_limits<double>::infinity();
+        } else if (neg > 0) {
+            value = -std::numeric_limits<double>::infinity();
+        }
+        sums[j].assign(b, special, value);
     }
-    s.assign(buf, special, value);
+}
+
+void MpiComm::allgatherv(double* data, const std::vector<int>& counts,
+                         const std::vector<int>& displs) const {
+    MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, data, counts.data(), displs.data(),
+                   MPI_DOUBLE, comm_);
 }
 
 double MpiComm::max(double x) const {

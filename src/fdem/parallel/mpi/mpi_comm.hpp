@@ -29,7 +29,10 @@ public:
 
     int rank() const override { return rank_; }
     int size() const override { return size_; }
-    void sum(ExactSum& s) const override;
+    using Comm::sum;
+    void sum(ExactSum* s, int n) const override;
+    void allgatherv(double* data, const std::vector<int>& counts,
+                    const std::vector<int>& displs) const override;
     double max(double x) const override;
     double min(double x) const override;
     int64_t sum(int64_t n) const override;
