@@ -2,9 +2,16 @@
 // portable and AVX-512. Private to integrate/step.cpp (and its tests).
 #pragma once
 
+#include <cstdint>
+
 #include "fdem/math.hpp"
 
 namespace fdem {
+
+/// Nodes per energy group: the node update's energy terms are summed naively over each group of
+/// kNodeGroup consecutive node ids, then the groups exactly (theory §4.4); the unit of node
+/// ownership of a distributed run (parallel/distributed.hpp).
+constexpr int32_t kNodeGroup = 64;
 
 /// Constants of one node update.
 struct NodeUpdate {
@@ -35,10 +42,11 @@ bool node_update_uses_avx512();
 
 namespace detail {
 
-/// Nodes [begin, end) with the AVX-512 kernel: the same per-node expressions as the portable
-/// loop in integrate/step.cpp (update_nodes), 8 nodes per instruction; the energy terms are then
-/// summed node by node in order into sums[0..2] (kinetic2, gravity work, damping power), so the
-/// sums have the same bits. Without `energy` sums[0] and sums[1] are 0 (not evaluated; the
+/// Nodes [begin, end) (begin a multiple of kNodeGroup) with the AVX-512 kernel: the same
+/// per-node expressions as the portable loop in integrate/step.cpp (update_nodes), 8 nodes per
+/// instruction; the energy terms are then summed node by node in order, per group of kNodeGroup
+/// nodes, into sums[3k .. 3k + 2] for the k-th group (kinetic2, gravity work, damping power), so
+/// the sums have the same bits. Without `energy` sums[0] and sums[1] are 0 (not evaluated; the
 /// damping power always is: it is integrated every step). Only call when the CPU has AVX-512F.
 void node_block_avx512(const NodeArrays& a, const NodeUpdate& u, bool gravity, bool damped,
                        bool energy, int32_t begin, int32_t end, Real* sums);

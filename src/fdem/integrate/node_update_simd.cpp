@@ -60,77 +60,81 @@ FDEM_AVX512 void block(const NodeArrays& a, const NodeUpdate& u, int32_t begin, 
     const auto* fd = reinterpret_cast<const double*>(a.f);
     const auto* x0d = reinterpret_cast<const double*>(a.x0);
     alignas(64) double kin_t[8], grav_t[8], damp_t[8];
-    Real kin = 0, grav = 0, damp = 0;
 
-    for (int32_t i0 = begin; i0 < end; i0 += 8) {
-        const int n = static_cast<int>(std::min<int32_t>(8, end - i0));
-        const __mmask8 in = static_cast<__mmask8>((1u << n) - 1);
-        const __m512d inv = _mm512_maskz_loadu_pd(in, a.inv_mass + i0);
-        const __m512d mi = _mm512_maskz_loadu_pd(in, a.mass + i0);
-        // nodes of fixed bodies (inv == 0) are skipped, as `continue` in the portable loop
-        const __mmask8 active = _mm512_mask_cmp_pd_mask(in, inv, _mm512_setzero_pd(), _CMP_NEQ_UQ);
-        const __mmask8 lo = kSpread[active & 15u], hi = kSpread[active >> 4];
-        const ptrdiff_t o = 2 * static_cast<ptrdiff_t>(i0);
-        __m512d vx, vy, fx, fy, xx, xy;
-        load_vec2(vd + o, lo, hi, vx, vy);
-        load_vec2(fd + o, lo, hi, fx, fy);
-        load_vec2(xd + o, lo, hi, xx, xy);
+    for (int32_t g0 = begin; g0 < end; g0 += kNodeGroup, sums += 3) {
+        const int32_t g_end = std::min<int32_t>(end, g0 + kNodeGroup);
+        Real kin = 0, grav = 0, damp = 0;
+        for (int32_t i0 = g0; i0 < g_end; i0 += 8) {
+            const int n = static_cast<int>(std::min<int32_t>(8, g_end - i0));
+            const __mmask8 in = static_cast<__mmask8>((1u << n) - 1);
+            const __m512d inv = _mm512_maskz_loadu_pd(in, a.inv_mass + i0);
+            const __m512d mi = _mm512_maskz_loadu_pd(in, a.mass + i0);
+            // nodes of fixed bodies (inv == 0) are skipped, as `continue` in the portable loop
+            const __mmask8 active =
+                _mm512_mask_cmp_pd_mask(in, inv, _mm512_setzero_pd(), _CMP_NEQ_UQ);
+            const __mmask8 lo = kSpread[active & 15u], hi = kSpread[active >> 4];
+            const ptrdiff_t o = 2 * static_cast<ptrdiff_t>(i0);
+            __m512d vx, vy, fx, fy, xx, xy;
+            load_vec2(vd + o, lo, hi, vx, vy);
+            load_vec2(fd + o, lo, hi, fx, fy);
+            load_vec2(xd + o, lo, hi, xx, xy);
 
-        // fi = f + m g (- c m v_old); v_new = v_old + (dt_v inv) fi
-        __m512d fix = _mm512_add_pd(fx, _mm512_mul_pd(mi, gx));
-        __m512d fiy = _mm512_add_pd(fy, _mm512_mul_pd(mi, gy));
-        if constexpr (kDamped) {
-            const __m512d cm = _mm512_mul_pd(c, mi);
-            fix = _mm512_sub_pd(fix, _mm512_mul_pd(cm, vx));
-            fiy = _mm512_sub_pd(fiy, _mm512_mul_pd(cm, vy));
-        }
-        const __m512d s = _mm512_mul_pd(dt_v, inv);
-        const __m512d wx = _mm512_add_pd(vx, _mm512_mul_pd(s, fix));
-        const __m512d wy = _mm512_add_pd(vy, _mm512_mul_pd(s, fiy));
-        // v^n (theory eq. 5.2)
-        const __m512d nx = first ? vx : _mm512_mul_pd(half, _mm512_add_pd(vx, wx));
-        const __m512d ny = first ? vy : _mm512_mul_pd(half, _mm512_add_pd(vy, wy));
-        if constexpr (kEnergy) {
-            _mm512_store_pd(kin_t, _mm512_mul_pd(mi, _mm512_add_pd(_mm512_mul_pd(nx, nx),
-                                                                   _mm512_mul_pd(ny, ny))));
-        }
-        if constexpr (kGravity && kEnergy) {
-            // work of gravity up to x^n: the exact potential change (theory eq. 4.2)
-            __m512d x0x, x0y;
-            load_vec2(x0d + o, lo, hi, x0x, x0y);
-            const __m512d d = _mm512_add_pd(_mm512_mul_pd(gx, _mm512_sub_pd(xx, x0x)),
-                                            _mm512_mul_pd(gy, _mm512_sub_pd(xy, x0y)));
-            _mm512_store_pd(grav_t, _mm512_mul_pd(mi, d));
-        }
-        if constexpr (kDamped) {
-            const __m512d d = _mm512_add_pd(_mm512_mul_pd(vx, nx), _mm512_mul_pd(vy, ny));
-            _mm512_store_pd(damp_t, _mm512_mul_pd(_mm512_mul_pd(c, mi), d));
-        }
-        store_vec2(vd + o, lo, hi, wx, wy);
-        store_vec2(xd + o, lo, hi, _mm512_add_pd(xx, _mm512_mul_pd(dt, wx)),
-                   _mm512_add_pd(xy, _mm512_mul_pd(dt, wy)));
+            // fi = f + m g (- c m v_old); v_new = v_old + (dt_v inv) fi
+            __m512d fix = _mm512_add_pd(fx, _mm512_mul_pd(mi, gx));
+            __m512d fiy = _mm512_add_pd(fy, _mm512_mul_pd(mi, gy));
+            if constexpr (kDamped) {
+                const __m512d cm = _mm512_mul_pd(c, mi);
+                fix = _mm512_sub_pd(fix, _mm512_mul_pd(cm, vx));
+                fiy = _mm512_sub_pd(fiy, _mm512_mul_pd(cm, vy));
+            }
+            const __m512d s = _mm512_mul_pd(dt_v, inv);
+            const __m512d wx = _mm512_add_pd(vx, _mm512_mul_pd(s, fix));
+            const __m512d wy = _mm512_add_pd(vy, _mm512_mul_pd(s, fiy));
+            // v^n (theory eq. 5.2)
+            const __m512d nx = first ? vx : _mm512_mul_pd(half, _mm512_add_pd(vx, wx));
+            const __m512d ny = first ? vy : _mm512_mul_pd(half, _mm512_add_pd(vy, wy));
+            if constexpr (kEnergy) {
+                _mm512_store_pd(kin_t, _mm512_mul_pd(mi, _mm512_add_pd(_mm512_mul_pd(nx, nx),
+                                                                       _mm512_mul_pd(ny, ny))));
+            }
+            if constexpr (kGravity && kEnergy) {
+                // work of gravity up to x^n: the exact potential change (theory eq. 4.2)
+                __m512d x0x, x0y;
+                load_vec2(x0d + o, lo, hi, x0x, x0y);
+                const __m512d d = _mm512_add_pd(_mm512_mul_pd(gx, _mm512_sub_pd(xx, x0x)),
+                                                _mm512_mul_pd(gy, _mm512_sub_pd(xy, x0y)));
+                _mm512_store_pd(grav_t, _mm512_mul_pd(mi, d));
+            }
+            if constexpr (kDamped) {
+                const __m512d d = _mm512_add_pd(_mm512_mul_pd(vx, nx), _mm512_mul_pd(vy, ny));
+                _mm512_store_pd(damp_t, _mm512_mul_pd(_mm512_mul_pd(c, mi), d));
+            }
+            store_vec2(vd + o, lo, hi, wx, wy);
+            store_vec2(xd + o, lo, hi, _mm512_add_pd(xx, _mm512_mul_pd(dt, wx)),
+                       _mm512_add_pd(xy, _mm512_mul_pd(dt, wy)));
 
-        // sums in node order
-        if constexpr (kEnergy || kDamped) {
-            if (active == 0xff) {
-                for (int i = 0; i < 8; ++i) {
-                    if constexpr (kEnergy) kin += kin_t[i];
-                    if constexpr (kGravity && kEnergy) grav += grav_t[i];
-                    if constexpr (kDamped) damp += damp_t[i];
-                }
-            } else {
-                for (int i = 0; i < n; ++i) {
-                    if (!(active & (1u << i))) continue;
-                    if constexpr (kEnergy) kin += kin_t[i];
-                    if constexpr (kGravity && kEnergy) grav += grav_t[i];
-                    if constexpr (kDamped) damp += damp_t[i];
+            // sums in node order
+            if constexpr (kEnergy || kDamped) {
+                if (active == 0xff) {
+                    for (int i = 0; i < 8; ++i) {
+                        if constexpr (kEnergy) kin += kin_t[i];
+                        if constexpr (kGravity && kEnergy) grav += grav_t[i];
+                        if constexpr (kDamped) damp += damp_t[i];
+                    }
+                } else {
+                    for (int i = 0; i < n; ++i) {
+                        if (!(active & (1u << i))) continue;
+                        if constexpr (kEnergy) kin += kin_t[i];
+                        if constexpr (kGravity && kEnergy) grav += grav_t[i];
+                        if constexpr (kDamped) damp += damp_t[i];
+                    }
                 }
             }
         }
+        sums[0] = kin;
+        sums[1] = grav;
+        sums[2] = damp;
     }
-    sums[0] = kin;
-    sums[1] = grav;
-    sums[2] = damp;
 }
 
 template <bool kEnergy>

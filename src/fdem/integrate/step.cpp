@@ -138,15 +138,18 @@ void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2*
     const NodeArrays arrays{x, v, f, mass, inv_mass, x0};
 #pragma omp parallel for schedule(static) if (end_node - first_node >= kMinParallelNodes)
     for (NodeId blk = 0; blk < n_blocks; ++blk) {
-        const NodeId block_end = std::min(nn, first_node + (blk + 1) * kNodeBlock);
-        for (NodeId g0 = first_node + blk * kNodeBlock; g0 < block_end; g0 += kNodeGroup) {
+        const NodeId block_begin = first_node + blk * kNodeBlock;
+        const NodeId block_end = std::min(nn, block_begin + kNodeBlock);
+        if (simd) {  // the whole block in one call, partials per group
+            detail::node_block_avx512(
+                arrays, u, kGravity, kDamped, kEnergy, block_begin, block_end,
+                part + kNodeSlots * static_cast<size_t>(block_begin / kNodeGroup));
+            continue;
+        }
+        for (NodeId g0 = block_begin; g0 < block_end; g0 += kNodeGroup) {
             Real kin = 0, grav = 0, damp = 0;
             const NodeId end = std::min(nn, g0 + kNodeGroup);
             Real* slot = part + kNodeSlots * static_cast<size_t>(g0 / kNodeGroup);
-            if (simd) {
-                detail::node_block_avx512(arrays, u, kGravity, kDamped, kEnergy, g0, end, slot);
-                continue;
-            }
             for (NodeId i = g0; i < end; ++i) {
                 const Real inv = inv_mass[i];
                 if (inv == 0) continue;  // nodes of fixed bodies
@@ -351,21 +354,34 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     }
     // the group partials combined exactly (theory §4.4): the same sums whatever the thread count
     // or the grouping of the groups (over processes too)
+    // (only the sums this step evaluates: the others are zeros)
     ExactSum kinetic2, gravity_work, damping_power;
-    for (NodeId grp = own_begin / kNodeGroup; grp < (own_end + kNodeGroup - 1) / kNodeGroup;
-         ++grp) {
-        const Real* slot = part + kNodeSlots * static_cast<size_t>(grp);
-        kinetic2.add(slot[0]);
-        gravity_work.add(slot[1]);
-        damping_power.add(slot[2]);
+    if (s.need_energy || mass_damped) {
+        for (NodeId grp = own_begin / kNodeGroup; grp < (own_end + kNodeGroup - 1) / kNodeGroup;
+             ++grp) {
+            const Real* slot = part + kNodeSlots * static_cast<size_t>(grp);
+            kinetic2.add(slot[0]);
+            gravity_work.add(slot[1]);
+            damping_power.add(slot[2]);
+        }
     }
 
     // prescribed velocity components overwrite v^{n+1/2}; the support reaction
     // R = m (v_new - v_free)/dt does the work R . v^n dt (theory eq. 4.3)
+    // their work and kinetic-energy corrections are summed naively over runs of consecutive
+    // support slots whose nodes lie in one node group, then the runs exactly (theory §4.4): the
+    // run boundaries depend only on the Model, and a run has one owner in a distributed step
     ExactSum support_work_sum;
     {
         size_t k = 0;
         const Real tm = s.time + 0.5 * dt;
+        NodeId run_group = -1;
+        Real run_work = 0, run_kinetic = 0;
+        const auto flush = [&] {
+            support_work_sum.add(run_work);
+            kinetic2.add(run_kinetic);
+            run_work = run_kinetic = 0;
+        };
         for (size_t b = 0; b < m.bcs.size(); ++b) {
             const BoundaryCondition& bc = m.bcs[b];
             // the controls (State::bc_enabled, bc_velocity) as of this step: a change books its
@@ -374,6 +390,10 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
             const Vec2 vel = s.bc_velocity[b];
             for (NodeId i : bc.nodes) {
                 const size_t slot = k++;
+                if (i / kNodeGroup != run_group) {  // before any skip: the same runs everywhere
+                    flush();
+                    run_group = i / kNodeGroup;
+                }
                 const Vec2 v_old = s.scratch_bc_v[slot];
                 s.bc_reaction[slot] = {};
                 if (!active || m.node_inv_mass[i] == 0) continue;
@@ -387,11 +407,12 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
                 const Vec2 vn_free = first ? v_old : 0.5 * (v_old + v_free);
                 const Vec2 vn = first ? v_old : 0.5 * (v_old + v_new);
                 s.bc_reaction[slot] = reaction;  // theory eq. 8.1 (bodies.csv)
-                support_work_sum.add(dot(reaction, vn) * dt_v);
-                kinetic2.add(mi * (norm2(vn) - norm2(vn_free)));
+                run_work += dot(reaction, vn) * dt_v;
+                run_kinetic += mi * (norm2(vn) - norm2(vn_free));
                 v[i] = v_new;
             }
         }
+        flush();
     }
 
     // x^{n+1} = x^n + dt v^{n+1/2} of the supported nodes, now that their v is final (the others

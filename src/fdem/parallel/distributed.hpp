@@ -16,12 +16,12 @@
 #include "element/cst.hpp"
 #include "fdem/model.hpp"
 #include "fdem/state.hpp"
+#include "integrate/node_update.hpp"
 #include "parallel/comm.hpp"
 
 namespace fdem {
 
-/// Nodes per energy group of the node update (integrate/step.cpp): the unit of node ownership.
-constexpr NodeId kNodeGroup = 64;
+// kNodeGroup (integrate/node_update.hpp): the unit of node ownership.
 
 struct StepPlan {
     int32_t rank = 0;
