@@ -27,8 +27,9 @@ public:
     /// most two 32-bit digits, the upper part kept whole in the 64-bit word).
     void add(double x) {
         const uint64_t bits = std::bit_cast<uint64_t>(x);
-        if ((bits << 1) == 0) return;  // +-0 adds nothing (most energy partials of a step
-                                       // without need_energy are zeros)
+        if ((bits << 1) == 0)
+            return;  // +-0 adds nothing (most energy partials of a step
+                     // without need_energy are zeros)
         int e = static_cast<int>((bits >> 52) & 0x7FF);
         uint64_t mant = bits & ((uint64_t{1} << 52) - 1);
         if (e == 0x7FF) {  // inf or NaN

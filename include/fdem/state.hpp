@@ -74,7 +74,7 @@ struct State {
     std::vector<uint8_t> bc_enabled;
 
     Energy energy;
-    EnergySums energy_sums;  ///< exact sums behind Energy's integrated terms (theory §4.4)
+    EnergySums energy_sums;          ///< exact sums behind Energy's integrated terms (theory §4.4)
     std::vector<Vec2> scratch_bc_v;  ///< v^{n-1/2}, then x^n, of supported nodes (step() scratch)
     /// force of each load slot (Load::slot_begin) at t^n: per edge the force on each of its two
     /// nodes, per node of a point load its share (step() scratch, rewritten every step)

@@ -308,4 +308,25 @@ inline Model make_particle_box(const ParticleOptions& o) {
     return m;
 }
 
+/// A mix for the parallel element pass tests: one 40 x 40 composite body (12800 sub-triangles,
+/// 50 chunks of 256, so the pass runs in parallel) and 30 small bodies alternating kinds (CST,
+/// composite, order-2 CST) and two materials, which the chunk merging must respect. Finalized.
+inline Model make_mixed_element_model() {
+    Model m;
+    m.materials.push_back(paper_material("p", 1e9, 0.45));
+    m.materials.push_back(paper_material("q", 2e9, 0.3));
+    add_rectangle_order2(m, 0, 0, 1, 1, 40, 40, 0);
+    for (int k = 0; k < 30; ++k) {
+        const Real x0 = 2.0 + 0.3 * k;
+        if (k % 3 == 0) {
+            add_rectangle(m, x0, 0, 0.2, 0.2, 2, 2, k % 2);
+        } else {
+            add_rectangle_order2(m, x0, 0, 0.2, 0.2, 2, 1, k % 2,
+                                 k % 3 == 1 ? ElementKind::Composite6 : ElementKind::Cst);
+        }
+    }
+    finalize_model(m);
+    return m;
+}
+
 }  // namespace fdem::scenes

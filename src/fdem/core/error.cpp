@@ -41,9 +41,9 @@ InputError::InputError(SourceLocation loc, std::string key, std::string message,
       msg_(std::move(message)),
       line_(std::move(source_line)) {}
 
-SimulationError::SimulationError(int64_t step, double time, std::string entity,
-                                 std::string message)
-    : std::runtime_error(fmt::format("step {} (t = {:.6g} s): {}: {}", step, time, entity, message)),
+SimulationError::SimulationError(int64_t step, double time, std::string entity, std::string message)
+    : std::runtime_error(
+          fmt::format("step {} (t = {:.6g} s): {}: {}", step, time, entity, message)),
       step_(step),
       time_(time),
       entity_(std::move(entity)),

@@ -190,6 +190,41 @@ void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId
     }
 }
 
+// The element chunks of each color c, entries [color_begin[c], color_begin[c+1]) one color after
+// the other (implicit barrier at the end of each omp for); entry i is schedule chunk chunk_of(i)
+// and leaves its partials in the returned array at kChunkSlots * i (strain energy, viscous power,
+// smallest det F, its triangle). The chunks of a color touch disjoint nodes, so their scatter
+// needs no atomics; dynamic scheduling only changes which thread runs a chunk, never the order in
+// which a node is updated. Uses s.scratch_sums (sized on first use).
+template <class ChunkOf>
+const Real* run_chunks(const Model& m, State& s, const int32_t* color_begin, int32_t ncolors,
+                       int32_t n, ChunkOf chunk_of) {
+    const ElementSchedule& sc = m.element_schedule;
+    if (s.scratch_sums.size() < kChunkSlots * static_cast<size_t>(n)) {
+        s.scratch_sums.resize(kChunkSlots * static_cast<size_t>(n));  // first call only
+    }
+    Real* part = s.scratch_sums.data();
+    const Vec2* x = s.x.data();
+    const Vec2* v = s.v.data();
+    Vec2* f = s.f.data();
+    const bool with_energy = s.need_energy;
+#pragma omp parallel if (n >= kMinParallelChunks)
+    for (int32_t c = 0; c < ncolors; ++c) {
+#pragma omp for schedule(dynamic, 1)
+        for (int32_t i = color_begin[c]; i < color_begin[c + 1]; ++i) {
+            const int32_t k = chunk_of(i);
+            ElementPass p;
+            material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy, p);
+            Real* slot = part + kChunkSlots * static_cast<size_t>(i);
+            slot[0] = p.strain_energy;
+            slot[1] = p.viscous_power;
+            slot[2] = p.min_jacobian;
+            slot[3] = static_cast<Real>(p.min_jacobian_tri);
+        }
+    }
+    return part;
+}
+
 }  // namespace
 
 void set_cst_kernel(CstKernel k) {
@@ -224,31 +259,8 @@ ElementPass add_internal_forces(const Model& m, State& s) {
     const ElementSchedule& sc = m.element_schedule;
     const int32_t nc = sc.num_chunks();
     const int32_t ncolors = static_cast<int32_t>(sc.color_begin.size()) - 1;
-    if (s.scratch_sums.size() < kChunkSlots * static_cast<size_t>(nc)) {
-        s.scratch_sums.resize(kChunkSlots * static_cast<size_t>(nc));  // first call only
-    }
-    Real* part = s.scratch_sums.data();
-    const Vec2* x = s.x.data();
-    const Vec2* v = s.v.data();
-    Vec2* f = s.f.data();
-    const bool with_energy = s.need_energy;
-
-    // colors one after the other (implicit barrier at the end of each omp for); the chunks of a
-    // color touch disjoint nodes, so their scatter needs no atomics. Dynamic scheduling only
-    // changes which thread runs a chunk, never the order in which a node is updated.
-#pragma omp parallel if (nc >= kMinParallelChunks)
-    for (int32_t c = 0; c < ncolors; ++c) {
-#pragma omp for schedule(dynamic, 1)
-        for (int32_t k = sc.color_begin[c]; k < sc.color_begin[c + 1]; ++k) {
-            ElementPass p;
-            material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy, p);
-            Real* slot = part + kChunkSlots * static_cast<size_t>(k);
-            slot[0] = p.strain_energy;
-            slot[1] = p.viscous_power;
-            slot[2] = p.min_jacobian;
-            slot[3] = static_cast<Real>(p.min_jacobian_tri);
-        }
-    }
+    const Real* part =
+        run_chunks(m, s, sc.color_begin.data(), ncolors, nc, [](int32_t k) { return k; });
 
     // the chunk partials combined exactly (theory §4.4): the same sums whatever the thread count
     // or grouping of the chunks; the smallest det F in chunk order (the first of equal ones)
@@ -268,8 +280,7 @@ ElementPass add_internal_forces(const Model& m, State& s) {
     return out;
 }
 
-ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_owner,
-                             int32_t rank) {
+ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_owner, int32_t rank) {
     const ElementSchedule& sc = m.element_schedule;
     const int32_t ncolors = static_cast<int32_t>(sc.color_begin.size()) - 1;
     ElementSubset out;
@@ -292,32 +303,10 @@ ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_ow
 }
 
 ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSubset& subset) {
-    const ElementSchedule& sc = m.element_schedule;
     const int32_t nk = static_cast<int32_t>(subset.chunks.size());
     const int32_t ncolors = static_cast<int32_t>(subset.color_begin.size()) - 1;
-    if (s.scratch_sums.size() < kChunkSlots * static_cast<size_t>(nk)) {
-        s.scratch_sums.resize(kChunkSlots * static_cast<size_t>(nk));  // first call only
-    }
-    Real* part = s.scratch_sums.data();
-    const Vec2* x = s.x.data();
-    const Vec2* v = s.v.data();
-    Vec2* f = s.f.data();
-    const bool with_energy = s.need_energy;
-    // as add_internal_forces(m, s): colors in order, chunks of a color on disjoint nodes
-#pragma omp parallel if (nk >= kMinParallelChunks)
-    for (int32_t c = 0; c < ncolors; ++c) {
-#pragma omp for schedule(dynamic, 1)
-        for (int32_t i = subset.color_begin[c]; i < subset.color_begin[c + 1]; ++i) {
-            const int32_t k = subset.chunks[static_cast<size_t>(i)];
-            ElementPass p;
-            material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy, p);
-            Real* slot = part + kChunkSlots * static_cast<size_t>(i);
-            slot[0] = p.strain_energy;
-            slot[1] = p.viscous_power;
-            slot[2] = p.min_jacobian;
-            slot[3] = static_cast<Real>(p.min_jacobian_tri);
-        }
-    }
+    const Real* part = run_chunks(m, s, subset.color_begin.data(), ncolors, nk,
+                                  [&](int32_t i) { return subset.chunks[static_cast<size_t>(i)]; });
     // the counted chunks' partials, exactly (theory §4.4); the smallest det F in chunk order
     ElementSubsetPass out;
     for (int32_t i = 0; i < nk; ++i) {

@@ -47,8 +47,7 @@ struct ElementSubset {
 
 /// The subset of `rank` for an assignment of every node to a process (node_owner[n] in
 /// [0, processes)). Nodes of fixed bodies may have any owner (their bodies have no chunks).
-ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_owner,
-                             int32_t rank);
+ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_owner, int32_t rank);
 
 /// What a process's subset pass reports: exact sums, so that adding those of all processes
 /// (Comm::sum) and rounding gives the serial pass's bits (theory §4.4), and the smallest det F

@@ -14,23 +14,7 @@ namespace fdem {
 namespace {
 
 Model mixed_model() {
-    Model m;
-    m.materials.push_back(scenes::paper_material("p", 1e9, 0.45));
-    m.materials.push_back(scenes::paper_material("q", 2e9, 0.3));
-    // 40 x 40 cells: 12800 sub-triangles, 50 chunks of 256 -> the pass runs in parallel
-    scenes::add_rectangle_order2(m, 0, 0, 1, 1, 40, 40, 0);
-    for (int k = 0; k < 30; ++k) {
-        // small bodies alternating kinds and materials: chunk merging must respect both
-        const Real x0 = 2.0 + 0.3 * k;
-        if (k % 3 == 0) {
-            scenes::add_rectangle(m, x0, 0, 0.2, 0.2, 2, 2, k % 2);
-        } else {
-            scenes::add_rectangle_order2(m, x0, 0, 0.2, 0.2, 2, 1, k % 2,
-                                         k % 3 == 1 ? ElementKind::Composite6 : ElementKind::Cst);
-        }
-    }
-    finalize_model(m);
-    return m;
+    return scenes::make_mixed_element_model();
 }
 
 TEST(CompositeParallel, ForcesAndEnergyBitwiseEqualForOneAndTwoThreads) {

@@ -106,20 +106,7 @@ TEST(ElementSubset, OwnedForcesAndEnergiesAreSerialForAnyPartition) {
 }
 
 TEST(ElementSubset, CompositeAndSmallBodies) {
-    Model m;
-    m.materials.push_back(scenes::paper_material("p", 1e9, 0.45));
-    m.materials.push_back(scenes::paper_material("q", 2e9, 0.3));
-    scenes::add_rectangle_order2(m, 0, 0, 1, 1, 40, 40, 0);
-    for (int k = 0; k < 30; ++k) {
-        const Real x0 = 2.0 + 0.3 * k;
-        if (k % 3 == 0) {
-            scenes::add_rectangle(m, x0, 0, 0.2, 0.2, 2, 2, k % 2);
-        } else {
-            scenes::add_rectangle_order2(m, x0, 0, 0.2, 0.2, 2, 1, k % 2,
-                                         k % 3 == 1 ? ElementKind::Composite6 : ElementKind::Cst);
-        }
-    }
-    finalize_model(m);
+    const Model m = scenes::make_mixed_element_model();
     std::vector<int32_t> owner(static_cast<size_t>(m.num_nodes()));
     std::mt19937 rng(11);
     for (int32_t& o : owner)

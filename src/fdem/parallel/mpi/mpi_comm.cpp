@@ -41,7 +41,8 @@ void MpiComm::sum(ExactSum* sums, int n) const {
     // and exact; all n in one MPI_Allreduce
     constexpr int kW = ExactSum::kWords;
     constexpr int kStride = kW + 3;
-    std::vector<int64_t> buf(static_cast<size_t>(kStride) * static_cast<size_t>(n), 0);
+    std::vector<int64_t>& buf = sum_buf_;
+    buf.assign(static_cast<size_t>(kStride) * static_cast<size_t>(n), 0);  // keeps its capacity
     for (int j = 0; j < n; ++j) {
         ExactSum& s = sums[j];
         int64_t* b = buf.data() + static_cast<size_t>(kStride) * static_cast<size_t>(j);

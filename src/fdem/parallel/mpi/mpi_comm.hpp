@@ -4,6 +4,9 @@
 
 #include <mpi.h>
 
+#include <cstdint>
+#include <vector>
+
 #include "parallel/comm.hpp"
 
 namespace fdem {
@@ -42,6 +45,8 @@ public:
 
 private:
     MPI_Comm comm_ = MPI_COMM_NULL;
+    mutable std::vector<int64_t>
+        sum_buf_;  ///< sum()'s words, sized on first use (no allocation per step)
     int rank_ = 0;
     int size_ = 1;
 };
