@@ -411,7 +411,10 @@ int run(const RunOptions& opt) {
         const fdem::RunResult res =
             sim.run_to_end(tty || batch ? progress : fdem::Simulation::StepCallback{});
         if (res.status == fdem::RunStatus::Stopped) {
-            const int sig = g_stop_signal;
+            // a distributed run stopped on every process at the same step, also those the
+            // signal did not reach: the signal of the run is the one any process saw
+            const int sig = g_comm != nullptr ? static_cast<int>(g_comm->max(g_stop_signal))
+                                              : static_cast<int>(g_stop_signal);
             if (tty) fmt::print(stderr, "\n");
             fmt::print(stderr,
                        "stopped by {} after step {} (t = {:.6g} s); checkpoint written to {}\n"

@@ -81,3 +81,11 @@ add_test(NAME mpi.restart_on_another_process_count
                  ${ex}/03_contact_slide/scenario.toml ${mpi_out}/restart 0.002 0.004)
 set_tests_properties(mpi.restart_on_another_process_count PROPERTIES LABELS mpi TIMEOUT 300
                      PASS_REGULAR_EXPRESSION "OK: restart on another process count is bitwise")
+# D9 for signals: SIGTERM to one process of two stops both after the same step with one
+# checkpoint; its restart is bitwise the uninterrupted run
+add_test(NAME mpi.signal_to_one_process_stops_all
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/signal_one_process.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${ex}/03_contact_slide/scenario.toml ${mpi_out}/signal 0.4)
+set_tests_properties(mpi.signal_to_one_process_stops_all PROPERTIES LABELS mpi TIMEOUT 120
+                     PASS_REGULAR_EXPRESSION "OK: a signal to one process stops all")

@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -768,9 +770,8 @@ void probe_law_depths(const Model& m, State& s, std::span<const BodyId> dirty) {
     cs.rebase_pending = true;
 }
 
-}  // namespace
-
-void add_contact_forces(const Model& m, State& s) {
+// add_contact_forces() with share == nullptr; else as one process of a distributed run
+void contact_forces_impl(const Model& m, State& s, const ContactShare* share, const Comm* comm) {
     const ContactModel& cm = m.contact;
     const ContactTopology& ct = s.topology;
     ContactState& cs = s.contact;
@@ -848,9 +849,22 @@ void add_contact_forces(const Model& m, State& s) {
     }
     PairResult* out = cs.pair_out.data();
     int32_t* in_contact = cs.in_contact.data();
+    // the pairs this process evaluates: all, or those of its targets (ContactShare; the
+    // candidates are sorted by target)
+    int32_t pair_begin = 0, pair_end = npairs;
+    if (share != nullptr) {
+        const NodeId* cn = cs.cand.node.data();
+        if (!share->first)
+            pair_begin =
+                static_cast<int32_t>(std::lower_bound(cn, cn + npairs, share->target_begin) - cn);
+        if (!share->last)
+            pair_end =
+                static_cast<int32_t>(std::lower_bound(cn, cn + npairs, share->target_end) - cn);
+    }
     int32_t chunk_count[kPairChunks];
-    auto chunk_begin = [npairs](int32_t ch) {
-        return static_cast<int32_t>(static_cast<int64_t>(npairs) * ch / kPairChunks);
+    auto chunk_begin = [pair_begin, pair_end](int32_t ch) {
+        return pair_begin +
+               static_cast<int32_t>(static_cast<int64_t>(pair_end - pair_begin) * ch / kPairChunks);
     };
     {
         const ContactState& ccs = cs;
@@ -861,7 +875,7 @@ void add_contact_forces(const Model& m, State& s) {
         const int32_t nbodies = m.num_bodies();
         // one parallel region: the boxes (a worksharing loop inside body_boxes(), whose
         // implicit barrier completes them), then the pairs
-#pragma omp parallel if (npairs > kMinParallelPairs)
+#pragma omp parallel if (pair_end - pair_begin > kMinParallelPairs)
         {
             if (boxes) body_boxes(ct, xc, xv, box, nbodies);
 #pragma omp for schedule(static)
@@ -888,6 +902,44 @@ void add_contact_forces(const Model& m, State& s) {
                 chunk_count[ch] = nc - b;
             }
         }
+    }
+
+    // the pairs in contact, as spans [span_begin, + span_count) of in_contact and out in pair
+    // order: the chunks' fronts, or (distributed) every process's pairs in contact, gathered
+    int32_t span_begin[kPairChunks], span_count[kPairChunks];
+    int32_t nspans = kPairChunks;
+    for (int32_t ch = 0; ch < kPairChunks; ++ch) {
+        span_begin[ch] = chunk_begin(ch);
+        span_count[ch] = chunk_count[ch];
+    }
+    if (share != nullptr) {
+        // records (pair index, result), this process's in pair order; the processes' ranges
+        // are ascending in rank order, so the concatenation is in pair order
+        constexpr size_t kRec = sizeof(int32_t) + sizeof(PairResult);
+        static_assert(std::is_trivially_copyable_v<PairResult>);
+        std::vector<char>& send = share->send;
+        size_t n_mine = 0;
+        for (int32_t ch = 0; ch < kPairChunks; ++ch)
+            n_mine += static_cast<size_t>(chunk_count[ch]);
+        send.resize(n_mine * kRec);
+        char* w = send.data();
+        for (int32_t ch = 0; ch < kPairChunks; ++ch) {
+            for (int32_t k = span_begin[ch]; k < span_begin[ch] + chunk_count[ch]; ++k) {
+                std::memcpy(w, &in_contact[k], sizeof(int32_t));
+                std::memcpy(w + sizeof(int32_t), &out[k], sizeof(PairResult));
+                w += kRec;
+            }
+        }
+        comm->allgather_bytes(send, share->recv);
+        const size_t n_all = share->recv.size() / kRec;
+        const char* r = share->recv.data();
+        for (size_t k = 0; k < n_all; ++k, r += kRec) {
+            std::memcpy(&in_contact[k], r, sizeof(int32_t));
+            std::memcpy(&out[k], r + sizeof(int32_t), sizeof(PairResult));
+        }
+        nspans = 1;
+        span_begin[0] = 0;
+        span_count[0] = static_cast<int32_t>(n_all);
     }
 
     // 3b. apply in pair order, merged with the previous active list (both sorted by (node,
@@ -933,9 +985,9 @@ void add_contact_forces(const Model& m, State& s) {
     // only the pairs in contact, in ascending pair order: an active pair that is a candidate
     // but not in contact is released at the same place of the merged order as before (by the
     // while loop, before the next larger key), so the order of every sum is unchanged
-    for (int32_t ch = 0; ch < kPairChunks; ++ch) {
-        const int32_t b = chunk_begin(ch);
-        for (int32_t k = b; k < b + chunk_count[ch]; ++k) {
+    for (int32_t sp = 0; sp < nspans; ++sp) {
+        const int32_t b = span_begin[sp];
+        for (int32_t k = b; k < b + span_count[sp]; ++k) {
             const int32_t pr = in_contact[k];
             const NodeId j = cs.cand.node[pr];
             const BodyId c = cs.cand.body[pr];
@@ -973,6 +1025,16 @@ void add_contact_forces(const Model& m, State& s) {
     cs.total_deep_penetrations += cs.deep_penetrations;
     cs.total_lost_inside += cs.lost_inside;
     cs.max_depth_ratio_ever = std::max(cs.max_depth_ratio_ever, cs.max_depth_ratio);
+}
+
+}  // namespace
+
+void add_contact_forces(const Model& m, State& s) {
+    contact_forces_impl(m, s, nullptr, nullptr);
+}
+
+void add_contact_forces(const Model& m, State& s, const ContactShare& share, const Comm& comm) {
+    contact_forces_impl(m, s, &share, &comm);
 }
 
 namespace {

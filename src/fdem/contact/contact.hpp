@@ -9,6 +9,7 @@
 
 #include "fdem/model.hpp"
 #include "fdem/state.hpp"
+#include "parallel/comm.hpp"
 
 namespace fdem {
 
@@ -32,6 +33,25 @@ void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> 
 /// Add contact forces to s.f and s.f_contact for positions s.x and velocities s.v (v^{n-1/2});
 /// update pair history, contact energy and contact dissipation in s.energy / s.contact.
 void add_contact_forces(const Model& m, State& s);
+
+/// One process's share of the narrow phase in a distributed run (issue #15, docs/parallel.md):
+/// the candidate pairs whose target id lies in [target_begin, target_end) (the first process
+/// from the lowest id, the last to the highest: edge targets, numbered after the real nodes,
+/// fall to it). The pair belongs to its target's process (spec D5.3).
+struct ContactShare {
+    NodeId target_begin = 0;
+    NodeId target_end = 0;
+    bool first = true;                     ///< no lower bound
+    bool last = true;                      ///< no upper bound
+    mutable std::vector<char> send, recv;  ///< the exchange of the pairs in contact (grow only)
+};
+
+/// add_contact_forces() as one process of a distributed run on a replicated State: the
+/// process evaluates its share of the candidate pairs (narrow phase and law, the expensive
+/// part), the pairs in contact are all-gathered (comm.allgather_bytes, in pair order), and
+/// every process applies all of them in pair order as the serial loop does: the same f,
+/// f_contact, histories and energies on every process, bitwise the serial ones. Collective.
+void add_contact_forces(const Model& m, State& s, const ContactShare& share, const Comm& comm);
 
 /// Positions and velocities of the virtual contact nodes (s.contact.xv, vv) from s.x, s.v
 /// (spec §4.4-2). add_contact_forces() calls it first; exposed for tests and output.

@@ -299,7 +299,11 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     }
 
     // 4. contact forces (writes s.f, s.f_contact, s.energy.contact, dissipated_contact)
-    add_contact_forces(m, s);
+    if (plan == nullptr) {
+        add_contact_forces(m, s);
+    } else {
+        add_contact_forces(m, s, plan->contact, *comm);  // the pairs of the owned targets
+    }
     if (loaded) add_load_forces(m, load_f, f);
 
     // remember v^{n-1/2} and x^n of supported nodes (preallocated scratch): their reaction needs
@@ -430,12 +434,12 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     }
 
     if (plan != nullptr) {
-        // every process holds the whole State again: the owned x, v and f (element forces of
-        // other nodes were partial), and the supports' reactions; f_contact is computed alike
-        // everywhere (contact is not distributed yet)
+        // every process holds the whole State again: the owned x and v and the supports'
+        // reactions; f_contact is applied alike everywhere; f (element forces of other nodes
+        // were partial) only where it is read: output steps (step_distributed())
         comm->allgatherv(&x[0].x, plan->node_counts, plan->node_displs);
         comm->allgatherv(&v[0].x, plan->node_counts, plan->node_displs);
-        comm->allgatherv(&f[0].x, plan->node_counts, plan->node_displs);
+        if (s.need_energy) comm->allgatherv(&f[0].x, plan->node_counts, plan->node_displs);
         if (!plan->bc_order.empty()) {
             double* buf = plan->bc_buffer.data();
             const size_t b = static_cast<size_t>(plan->bc_displs[plan->rank]) / 2;
@@ -498,6 +502,10 @@ void step_distributed(const Model& m, State& s, const StepPlan& plan, const Comm
     step_impl(m, s, &plan, &comm);
 }
 
+void gather_forces(State& s, const StepPlan& plan, const Comm& comm) {
+    comm.allgatherv(&s.f[0].x, plan.node_counts, plan.node_displs);
+}
+
 StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs) {
     StepPlan p;
     p.rank = rank;
@@ -523,6 +531,10 @@ StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs) {
         }
     }
     p.elements = element_subset(m, p.node_owner, rank);
+    p.contact.target_begin = p.node_begin;
+    p.contact.target_end = p.node_end;
+    p.contact.first = rank == 0;
+    p.contact.last = rank == procs - 1;
     // support slots (the order of Model::bcs and their nodes) grouped by the owner of the node
     std::vector<std::vector<int32_t>> by_owner(static_cast<size_t>(procs));
     int32_t slot = 0;

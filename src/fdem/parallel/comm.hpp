@@ -29,6 +29,9 @@ public:
     /// process (an all-gather of contiguous parts).
     virtual void allgatherv(double* data, const std::vector<int>& counts,
                             const std::vector<int>& displs) const = 0;
+    /// Every process's bytes, concatenated in rank order, into all (resized; its capacity is
+    /// kept, so a caller reusing it does not allocate once it is large enough).
+    virtual void allgather_bytes(const std::vector<char>& mine, std::vector<char>& all) const = 0;
     /// Order-free reductions (D8.1): the same result for any process count.
     virtual double max(double x) const = 0;
     virtual double min(double x) const = 0;
@@ -45,6 +48,9 @@ public:
     int size() const override { return 1; }
     void sum(ExactSum*, int) const override {}
     void allgatherv(double*, const std::vector<int>&, const std::vector<int>&) const override {}
+    void allgather_bytes(const std::vector<char>& mine, std::vector<char>& all) const override {
+        all.assign(mine.begin(), mine.end());
+    }
     double max(double x) const override { return x; }
     double min(double x) const override { return x; }
     int64_t sum(int64_t n) const override { return n; }

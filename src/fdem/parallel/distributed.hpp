@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "contact/contact.hpp"
 #include "element/cst.hpp"
 #include "fdem/model.hpp"
 #include "fdem/state.hpp"
@@ -31,6 +32,7 @@ struct StepPlan {
     std::vector<int32_t> node_owner;            ///< per node
     std::vector<int> node_counts, node_displs;  ///< per process, in doubles (2 per node)
     ElementSubset elements;                     ///< owner computes (element/cst.hpp)
+    ContactShare contact;                       ///< the pairs of the owned targets
     std::vector<int32_t> bc_order;              ///< support slots by owner, then slot
     std::vector<int> bc_counts, bc_displs;      ///< per process, in doubles (2 per slot)
     mutable std::vector<double> bc_buffer;      ///< gather buffer (2 per slot)
@@ -40,7 +42,14 @@ struct StepPlan {
 /// the same number of element triangles each (the node update is cheaper than the elements).
 StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs);
 
-/// step(m, s) as one of plan.procs processes (integrate/step.cpp). Collective.
+/// step(m, s) as one of plan.procs processes (integrate/step.cpp). Collective. Afterwards x, v,
+/// f_contact and the support reactions are the serial ones on every process; f is complete
+/// only on the nodes the process owns, on the nodes of fixed bodies (no element forces), and
+/// everywhere after a step with s.need_energy (output steps): call gather_forces() before
+/// reading it on other steps.
 void step_distributed(const Model& m, State& s, const StepPlan& plan, const Comm& comm);
+
+/// Make s.f complete on every process (an all-gather of the owned parts). Collective.
+void gather_forces(State& s, const StepPlan& plan, const Comm& comm);
 
 }  // namespace fdem

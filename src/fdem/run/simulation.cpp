@@ -158,7 +158,14 @@ struct Simulation::Impl {
         }
     }
 
+    /// a distributed step leaves f complete only on output steps (step_distributed()): make it
+    /// complete before f is written on any other step. Collective.
+    void complete_forces() {
+        if (plan && !state.need_energy) gather_forces(state, *plan, *comm);
+    }
+
     void write_output(bool last) {
+        complete_forces();
         if (!writes) {  // another process writes; keep the same bookkeeping
             ++prog.frame;
             prog.next_output +=
@@ -190,6 +197,7 @@ struct Simulation::Impl {
     }
 
     void write_checkpoint_file(const std::string& path) {
+        complete_forces();
         if (!writes) return;
         write_checkpoint(path, model, state, prog);
         last_checkpoint = {path, state.step, state.time};
@@ -229,7 +237,10 @@ struct Simulation::Impl {
         const bool last = s.step == total;
         const bool output_due = out && (s.time >= prog.next_output - 0.5 * s.dt || last);
         const bool checkpoint_due = ck && (s.time >= next_checkpoint - 0.5 * s.dt || last);
-        const bool stop_asked = stop.load(std::memory_order_relaxed) != 0;
+        // a distributed run stops at the same step on every process: the first step after any
+        // process saw the request (SIGINT/SIGTERM reach each process at its own time)
+        bool stop_asked = stop.load(std::memory_order_relaxed) != 0;
+        if (plan) stop_asked = comm->max(stop_asked ? 1.0 : 0.0) > 0;
         // NaN/Inf check every 16 steps and before anything is written: files hold good states
         if (s.step % 16 == 0 || output_due || checkpoint_due || stop_asked) check_state(m, s);
         if (output_due) write_output(last);
@@ -245,6 +256,7 @@ struct Simulation::Impl {
     void write_failure() {
         failure = {};
         failure_error.clear();
+        if (plan) gather_forces(state, *plan, *comm);  // (the step's own failures did already)
         if (out_dir.empty() || !writes) return;
         const std::string path = (fs::path(out_dir) / "failure.vtu").string();
         try {

@@ -81,6 +81,23 @@ void MpiComm::allgatherv(double* data, const std::vector<int>& counts,
                    MPI_DOUBLE, comm_);
 }
 
+void MpiComm::allgather_bytes(const std::vector<char>& mine, std::vector<char>& all) const {
+    counts_.resize(static_cast<size_t>(size_));
+    displs_.resize(static_cast<size_t>(size_));
+    const int n = static_cast<int>(mine.size());
+    MPI_Allgather(&n, 1, MPI_INT, counts_.data(), 1, MPI_INT, comm_);
+    int64_t total = 0;
+    for (int r = 0; r < size_; ++r) {
+        displs_[static_cast<size_t>(r)] = static_cast<int>(total);
+        total += counts_[static_cast<size_t>(r)];
+    }
+    if (total > std::numeric_limits<int>::max())
+        throw std::runtime_error("allgather_bytes: more than 2 GiB in one exchange");
+    all.resize(static_cast<size_t>(total));
+    MPI_Allgatherv(mine.data(), n, MPI_BYTE, all.data(), counts_.data(), displs_.data(), MPI_BYTE,
+                   comm_);
+}
+
 double MpiComm::max(double x) const {
     MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, comm_);
     return x;

@@ -36,6 +36,7 @@ public:
     void sum(ExactSum* s, int n) const override;
     void allgatherv(double* data, const std::vector<int>& counts,
                     const std::vector<int>& displs) const override;
+    void allgather_bytes(const std::vector<char>& mine, std::vector<char>& all) const override;
     double max(double x) const override;
     double min(double x) const override;
     int64_t sum(int64_t n) const override;
@@ -47,6 +48,7 @@ private:
     MPI_Comm comm_ = MPI_COMM_NULL;
     mutable std::vector<int64_t>
         sum_buf_;  ///< sum()'s words, sized on first use (no allocation per step)
+    mutable std::vector<int> counts_, displs_;  ///< allgather_bytes()'s, sized on first use
     int rank_ = 0;
     int size_ = 1;
 };
