@@ -48,6 +48,33 @@ void write_vtu(const std::string& path, const Model& m, const State& s,
                std::span<const ExtraField> extra_point = {},
                std::span<const ExtraField> extra_cell = {});
 
+/// One process's piece of a frame of a distributed run (spec parallel-and-python.md D13): the
+/// triangles whose first node the process owns and the nodes they use (ascending ids), with
+/// the triangles' connectivity in the piece's node numbering.
+struct VtuPiece {
+    int32_t rank = 0;
+    std::vector<int32_t> nodes;         ///< node ids (global), ascending
+    std::vector<int32_t> tris;          ///< triangle ids (global), ascending
+    std::vector<int32_t> connectivity;  ///< 3 per triangle: indices into nodes
+};
+
+/// The piece of process `rank`, given the owner of every node.
+VtuPiece make_vtu_piece(const Model& m, const std::vector<int32_t>& node_owner, int32_t rank);
+
+/// write_vtu() restricted to a piece: the same arrays at the piece's nodes and triangles, plus
+/// point data node_id and cell data tri_id and rank (the ids of the serial frame, so tools can
+/// merge the pieces: a node used by two pieces appears in both).
+void write_vtu_piece(const std::string& path, const Model& m, const State& s, const VtuPiece& piece,
+                     std::span<const ExtraField> extra_point = {},
+                     std::span<const ExtraField> extra_cell = {});
+
+/// The .pvtu (VTK XML PUnstructuredGrid) that lists the pieces `sources` (paths relative to
+/// the .pvtu) with the arrays write_vtu_piece() writes. ParaView opens it as one data set.
+void write_pvtu(const std::string& path, const Model& m, const State& s,
+                const std::vector<std::string>& sources,
+                std::span<const ExtraField> extra_point = {},
+                std::span<const ExtraField> extra_cell = {});
+
 /// ParaView time series: collects (time, file) and rewrites the .pvd atomically after each
 /// frame, so a killed run still leaves a valid series of the frames written so far.
 class PvdSeries {

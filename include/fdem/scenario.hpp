@@ -17,6 +17,9 @@ struct OutputSettings {
     Real interval = 0;   ///< simulated time between output frames [s]; 0 = 100 frames
     bool vtu = true;     ///< write VTU frames and a PVD series
     bool bodies = true;  ///< write bodies.csv (resultants per body entry and boundary group)
+    /// distributed runs: one serial .vtu per frame written by process 0, instead of a .pvtu
+    /// with one piece per process (no effect on a one-process run)
+    bool merge = false;
     std::vector<ProbeSpec> probes;  ///< [[probe]] entries, resolved (probes.csv when not empty)
     std::string dir = "out";        ///< output folder (relative to the working directory)
 };

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Usage: same_as_serial.sh FDEM MPIEXEC SCENARIO OUT "NP..." [fdem run options...]
 # Runs SCENARIO with one process, then under mpirun with each NP, and checks that the state hash
-# (x, v, energies), history.csv, bodies.csv and the last VTU frame are byte-identical to the
-# one-process run's (issue #15, spec parallel-and-python.md T1). OMP_NUM_THREADS is the caller's.
+# (x, v, energies), history.csv and bodies.csv are byte-identical to the one-process run's and
+# its last frame is bitwise the serial one (issue #15, spec parallel-and-python.md T1, T6).
+# OMP_NUM_THREADS is the caller's.
 set -euo pipefail
 fdem=$1 mpiexec=$2 scenario=$3 out=$4 nps=$5
 shift 5
@@ -25,8 +26,20 @@ for np in $nps; do
             fail=1
         fi
     done
+    # the last frame: a .pvtu of np pieces, merged by node_id/tri_id with VTK's reader
+    # (T6), or with [output] merge = true (and for one process) the serial .vtu, byte for byte
     last=$(cd "$out/serial" && ls frame_*.vtu | tail -1)
-    if ! cmp -s "$out/serial/$last" "$out/np$np/$last"; then
+    if [ -f "$out/np$np/${last%.vtu}.pvtu" ]; then
+        if ! /usr/bin/python3 "$(dirname "$0")/check_pvtu.py" "$out/serial/$last" \
+            "$out/np$np/${last%.vtu}.pvtu" "$np"; then
+            echo "FAIL: ${last%.vtu}.pvtu of -np $np differs from the serial $last"
+            fail=1
+        fi
+        if ! grep -q "file=\"${last%.vtu}.pvtu\"" "$out/np$np/series.pvd"; then
+            echo "FAIL: series.pvd of -np $np does not list ${last%.vtu}.pvtu"
+            fail=1
+        fi
+    elif ! cmp -s "$out/serial/$last" "$out/np$np/$last"; then
         echo "FAIL: $last of -np $np differs"
         fail=1
     fi

@@ -53,6 +53,13 @@ foreach(case "01_cantilever:0.008" "03_contact_slide:0.002" "04_particles:1.6e-4
   set_tests_properties(mpi.same_as_serial.${name} PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
                        PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
 endforeach()
+# D13: [output] merge = true: process 0 writes the serial .vtu frames instead of .pvtu pieces
+add_test(NAME mpi.same_as_serial.merged_frames
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${mpi_dir}/merged.toml ${mpi_out}/merged "3")
+set_tests_properties(mpi.same_as_serial.merged_frames PROPERTIES LABELS mpi TIMEOUT 300
+                     PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
 # T2: two OpenMP threads inside each of two processes
 add_test(NAME mpi.same_as_serial.two_threads_per_process
          COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV} OMP_NUM_THREADS=2

@@ -275,13 +275,14 @@ private:
         if (!t) {
             return;
         }
-        Fields f(src_, *t, "[output]", "output", {"interval", "dir", "vtu", "bodies"});
+        Fields f(src_, *t, "[output]", "output", {"interval", "dir", "vtu", "bodies", "merge"});
         OutputSettings& o = sc.run.output;
         o.interval = f.real("interval", 0.0, "s", Bounds::positive());
         interval_loc_ = f.location("interval");
         o.dir = f.string("dir", std::string("out"));
         o.vtu = f.boolean("vtu", true);
         o.bodies = f.boolean("bodies", true);
+        o.merge = f.boolean("merge", false);
     }
 
     // ---- [checks] ---------------------------------------------------------------------------

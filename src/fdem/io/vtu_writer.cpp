@@ -212,18 +212,31 @@ std::string data_array_xml(const Array& a, uint64_t offset, const char* indent) 
     return out;
 }
 
-}  // namespace
+/// The arrays of a frame, in file order, and the storage their fill functions read.
+struct FrameArrays {
+    std::vector<Array> field, point, cell, geom;
+    std::vector<int32_t> composite_base;
+    std::vector<Real> damage;
+    int64_t points = 0, cells = 0;
+    FrameArrays() = default;
+    FrameArrays(const FrameArrays&) = delete;  // the fill functions point into the storage
+};
 
-void write_vtu(const std::string& path, const Model& m, const State& s,
-               std::span<const ExtraField> extra_point, std::span<const ExtraField> extra_cell) {
+void build_arrays(const Model& m, const State& s, std::span<const ExtraField> extra_point,
+                  std::span<const ExtraField> extra_cell, FrameArrays& A) {
     const int64_t nn = m.num_nodes();
     const int64_t nt = m.num_tris();
+    A.points = nn;
+    A.cells = nt;
     const Vec2* X = m.node_x0.data();
     const Vec2* x = s.x.data();
 
     // -- the arrays, in file order --------------------------------------------------------------
 
-    std::vector<Array> field, point, cell, geom;
+    std::vector<Array>& field = A.field;
+    std::vector<Array>& point = A.point;
+    std::vector<Array>& cell = A.cell;
+    std::vector<Array>& geom = A.geom;
     const double time = s.time;
     const int64_t cycle = s.step;
     auto scalar = [](double v) {
@@ -300,7 +313,8 @@ void write_vtu(const std::string& path, const Model& m, const State& s,
     // composite elements (theory §3.5): the id of the composite owning each sub-triangle,
     // numbered over the model in triangle order (-1 for CST triangles); only written when the
     // model has a composite body
-    std::vector<int32_t> composite_base(static_cast<size_t>(m.num_bodies()), -1);
+    std::vector<int32_t>& composite_base = A.composite_base;
+    composite_base.assign(static_cast<size_t>(m.num_bodies()), -1);
     int32_t n_composites = 0;
     for (size_t b = 0; b < composite_base.size(); ++b) {
         const Body& body = m.bodies[b];
@@ -329,7 +343,7 @@ void write_vtu(const std::string& path, const Model& m, const State& s,
     // fracture (spec fracture.md §8): the fragment of every triangle (State::tri_fragment) and
     // the largest frozen damage of the joints on its edges; only for models with joints, so
     // other frames keep their bytes
-    std::vector<Real> damage;
+    std::vector<Real>& damage = A.damage;
     if (!m.joints.nodes.empty() && static_cast<int64_t>(s.tri_fragment.size()) == nt) {
         cell.push_back(id_array("fragment", s.tri_fragment));
         damage.resize(static_cast<size_t>(nt));
@@ -370,6 +384,66 @@ void write_vtu(const std::string& path, const Model& m, const State& s,
                         std::memset(out, 5, static_cast<size_t>(e - b));  // VTK_TRIANGLE
                     },
                     nullptr});
+}
+
+/// a's tuples at the indices index[0 .. n) (a piece's nodes or triangles, spec D13)
+Array select(const Array& a, const std::vector<int32_t>& index) {
+    Array r = a;
+    r.tuples = static_cast<int64_t>(index.size());
+    const size_t tb = static_cast<size_t>(a.components) * type_size(a.type);
+    r.fill = [fill = a.fill, &index, tb](int64_t b, int64_t e, unsigned char* out) {
+        for (int64_t k = b; k < e; ++k) {
+            const int64_t i = index[static_cast<size_t>(k)];
+            fill(i, i + 1, out + static_cast<size_t>(k - b) * tb);
+        }
+    };
+    return r;
+}
+
+/// The arrays of piece p only: its triangles and the nodes they use, numbered locally, plus
+/// node_id, tri_id and rank (spec D13: the ids merge pieces back into the serial frame).
+void restrict_to_piece(const VtuPiece& p, FrameArrays& A) {
+    for (Array& a : A.point)
+        a = select(a, p.nodes);
+    for (Array& a : A.cell)
+        a = select(a, p.tris);
+    const int32_t* nodes = p.nodes.data();
+    const int32_t* tris = p.tris.data();
+    A.point.push_back({"node_id", VtkType::Int32, 1, static_cast<int64_t>(p.nodes.size()),
+                       [nodes](int64_t b, int64_t e, unsigned char* out) {
+                           std::memcpy(out, nodes + b, static_cast<size_t>(e - b) * 4);
+                       },
+                       nullptr});
+    A.cell.push_back({"tri_id", VtkType::Int32, 1, static_cast<int64_t>(p.tris.size()),
+                      [tris](int64_t b, int64_t e, unsigned char* out) {
+                          std::memcpy(out, tris + b, static_cast<size_t>(e - b) * 4);
+                      },
+                      nullptr});
+    const int32_t rank = p.rank;
+    A.cell.push_back({"rank", VtkType::Int32, 1, static_cast<int64_t>(p.tris.size()),
+                      [rank](int64_t b, int64_t e, unsigned char* out) {
+                          for (int64_t k = b; k < e; ++k)
+                              std::memcpy(out + (k - b) * 4, &rank, 4);
+                      },
+                      nullptr});
+    A.geom[0] = select(A.geom[0], p.nodes);
+    const int32_t* conn = p.connectivity.data();
+    A.geom[1].tuples = static_cast<int64_t>(p.connectivity.size());
+    A.geom[1].fill = [conn](int64_t b, int64_t e, unsigned char* out) {
+        std::memcpy(out, conn + b, static_cast<size_t>(e - b) * 4);
+    };
+    A.geom[2].tuples = A.geom[3].tuples = static_cast<int64_t>(p.tris.size());
+    A.points = static_cast<int64_t>(p.nodes.size());
+    A.cells = static_cast<int64_t>(p.tris.size());
+}
+
+void write_frame(const std::string& path, const Model& m, const State& s, const FrameArrays& A) {
+    const std::vector<Array>& field = A.field;
+    const std::vector<Array>& point = A.point;
+    const std::vector<Array>& cell = A.cell;
+    const std::vector<Array>& geom = A.geom;
+    const int64_t nn = A.points;
+    const int64_t nt = A.cells;
 
     // -- XML header ----------------------------------------------------------------------------
 
@@ -445,6 +519,95 @@ void write_vtu(const std::string& path, const Model& m, const State& s,
                 emit(a);
         }
         file.write(std::string("\n  </AppendedData>\n</VTKFile>\n"));
+        file.commit();
+    } catch (const std::runtime_error& e) {
+        throw SimulationError(s.step, s.time, path, e.what());
+    }
+}
+
+/// <PDataArray .../> of a's name, type and components (no data: the pieces hold it)
+std::string pdata_array_xml(const Array& a, const char* indent) {
+    std::string out = fmt::format(R"({}<PDataArray type="{}" Name="{}" NumberOfComponents="{}")",
+                                  indent, type_name(a.type), xml_escape(a.name), a.components);
+    if (a.component_names != nullptr) {
+        for (int c = 0; c < a.components; ++c)
+            out += fmt::format(R"( ComponentName{}="{}")", c, a.component_names[c]);
+    }
+    return out + "/>\n";
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const Model& m, const State& s,
+               std::span<const ExtraField> extra_point, std::span<const ExtraField> extra_cell) {
+    FrameArrays A;
+    build_arrays(m, s, extra_point, extra_cell, A);
+    write_frame(path, m, s, A);
+}
+
+VtuPiece make_vtu_piece(const Model& m, const std::vector<int32_t>& node_owner, int32_t rank) {
+    VtuPiece p;
+    p.rank = rank;
+    std::vector<int32_t> local(static_cast<size_t>(m.num_nodes()), -1);
+    for (TriId t = 0; t < m.num_tris(); ++t) {
+        const auto& tn = m.tri_nodes[static_cast<size_t>(t)];
+        if (node_owner[static_cast<size_t>(tn[0])] != rank) continue;  // its first node's owner
+        p.tris.push_back(t);
+        for (const NodeId i : tn)
+            local[static_cast<size_t>(i)] = 0;
+    }
+    for (NodeId i = 0; i < m.num_nodes(); ++i) {
+        if (local[static_cast<size_t>(i)] == 0) {
+            local[static_cast<size_t>(i)] = static_cast<int32_t>(p.nodes.size());
+            p.nodes.push_back(i);
+        }
+    }
+    for (const TriId t : p.tris) {
+        for (const NodeId i : m.tri_nodes[static_cast<size_t>(t)])
+            p.connectivity.push_back(local[static_cast<size_t>(i)]);
+    }
+    return p;
+}
+
+void write_vtu_piece(const std::string& path, const Model& m, const State& s, const VtuPiece& piece,
+                     std::span<const ExtraField> extra_point,
+                     std::span<const ExtraField> extra_cell) {
+    FrameArrays A;
+    build_arrays(m, s, extra_point, extra_cell, A);
+    restrict_to_piece(piece, A);
+    write_frame(path, m, s, A);
+}
+
+void write_pvtu(const std::string& path, const Model& m, const State& s,
+                const std::vector<std::string>& sources, std::span<const ExtraField> extra_point,
+                std::span<const ExtraField> extra_cell) {
+    FrameArrays A;
+    build_arrays(m, s, extra_point, extra_cell, A);
+    const VtuPiece none;
+    restrict_to_piece(none, A);  // the arrays' names and types as the pieces have them
+    std::string h;
+    h += "<?xml version=\"1.0\"?>\n";
+    h += "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n";
+    h += "  <PUnstructuredGrid GhostLevel=\"0\">\n";
+    h += "    <PPointData Vectors=\"velocity\">\n";
+    for (const Array& a : A.point)
+        h += pdata_array_xml(a, "      ");
+    h += "    </PPointData>\n";
+    h += "    <PCellData Scalars=\"von_mises\" Tensors=\"stress\">\n";
+    for (const Array& a : A.cell)
+        h += pdata_array_xml(a, "      ");
+    h += "    </PCellData>\n";
+    h += "    <PPoints>\n";
+    h += pdata_array_xml(A.geom[0], "      ");
+    h += "    </PPoints>\n";
+    for (const std::string& src : sources)
+        h += fmt::format("    <Piece Source=\"{}\"/>\n", xml_escape(src));
+    h += "  </PUnstructuredGrid>\n";
+    h += "</VTKFile>\n";
+    try {
+        AtomicFile file(path);
+        file.write(h);
         file.commit();
     } catch (const std::runtime_error& e) {
         throw SimulationError(s.step, s.time, path, e.what());

@@ -62,6 +62,7 @@ struct Simulation::Impl {
     /// only process 0 writes files (writes)
     const Comm* comm = nullptr;
     std::unique_ptr<StepPlan> plan;
+    VtuPiece piece;  ///< this process's piece of the frames (frame_in_pieces())
     bool writes = true;
 
     Impl(std::string n, Model&& m, RunSettings r)
@@ -164,8 +165,31 @@ struct Simulation::Impl {
         if (plan && !state.need_energy) gather_forces(state, *plan, *comm);
     }
 
+    /// a distributed frame as pieces (spec D13) rather than one file by process 0
+    bool frame_in_pieces() const {
+        return plan && comm->size() > 1 && run.output.vtu && !run.output.merge;
+    }
+
+    /// every process writes its piece frame_NNNNNN/pRRRR.vtu; an error on any process stops
+    /// all of them with the same message (spec D9). Collective.
+    void write_piece() {
+        const fs::path dir = fs::path(out_dir) / fmt::format("frame_{:06d}", prog.frame);
+        run_collectively(*comm, [&] {
+            std::error_code ec;
+            fs::create_directories(dir, ec);
+            if (ec) {
+                throw SimulationError(
+                    state.step, state.time, dir.string(),
+                    "cannot create the folder of the frame's pieces: " + ec.message());
+            }
+            write_vtu_piece((dir / fmt::format("p{:04d}.vtu", comm->rank())).string(), model, state,
+                            piece);
+        });
+    }
+
     void write_output(bool last) {
         complete_forces();
+        if (frame_in_pieces()) write_piece();
         if (!writes) {  // another process writes; keep the same bookkeeping
             ++prog.frame;
             prog.next_output +=
@@ -179,7 +203,16 @@ struct Simulation::Impl {
             prog.impulses.clear();
         }
         if (probes) probes->write(model, state);
-        if (run.output.vtu) {
+        if (frame_in_pieces()) {
+            const std::string frame = fmt::format("frame_{:06d}.pvtu", prog.frame);
+            std::vector<std::string> sources;
+            for (int r = 0; r < comm->size(); ++r)
+                sources.push_back(fmt::format("frame_{:06d}/p{:04d}.vtu", prog.frame, r));
+            write_pvtu((out / frame).string(), model, state, sources);
+            series->add(state.time, frame);
+            prog.frames.emplace_back(state.time, frame);
+            last_frame = {(out / frame).string(), state.step, state.time};
+        } else if (run.output.vtu) {
             const std::string frame = fmt::format("frame_{:06d}.vtu", prog.frame);
             write_vtu((out / frame).string(), model, state);
             series->add(state.time, frame);
@@ -361,6 +394,7 @@ void Simulation::distribute(const Comm& comm) {
     I.comm = &comm;
     I.writes = comm.rank() == 0;
     I.plan = std::make_unique<StepPlan>(make_step_plan(I.model, comm.rank(), comm.size()));
+    I.piece = make_vtu_piece(I.model, I.plan->node_owner, comm.rank());
 }
 
 bool Simulation::output_open() const {

@@ -318,6 +318,64 @@ TEST(WriteVtu, LargeMeshCrossesChunkBoundaries) {
     EXPECT_EQ(pts[3 * (3 * n - 2)], static_cast<double>(n));  // node 1 of the last triangle
 }
 
+// Pieces of a distributed run (spec D13): the unit square's two triangles split between two
+// processes by the owner of their first node; each piece holds its triangle, the nodes it uses
+// in local numbering, and node_id / tri_id / rank to merge back; values are the serial ones at
+// those ids; the .pvtu lists the pieces with the pieces' arrays.
+TEST(WriteVtu, PiecesHoldTheirTrianglesWithGlobalIds) {
+    const fs::path dir = test_dir();
+    const Model m = unit_square();  // triangles (0, 1, 2) and (0, 2, 3)
+    State s = deformed(m, {1.1, 0.2, 0, 0.9}, {0.5, 0.25});
+    // triangle 1 starts at node 0 as well: move it to process 1 by owning node 0 there
+    const std::vector<int32_t> owner = {1, 0, 0, 0};
+    const VtuPiece p0 = make_vtu_piece(m, owner, 0), p1 = make_vtu_piece(m, owner, 1);
+    EXPECT_TRUE(p0.tris.empty());
+    EXPECT_EQ(p1.tris, (std::vector<int32_t>{0, 1}));
+    const std::vector<int32_t> owner2 = {0, 0, 1, 1};
+    const VtuPiece a = make_vtu_piece(m, owner2, 0), b = make_vtu_piece(m, owner2, 1);
+    EXPECT_EQ(a.tris, (std::vector<int32_t>{0, 1}));  // both start at node 0
+    EXPECT_TRUE(b.tris.empty());
+    // a piece with one triangle: the second one, by a model whose triangle 1 starts at node 2
+    Model m2 = m;
+    m2.tri_nodes[1] = {2, 3, 0};
+    const VtuPiece q = make_vtu_piece(m2, owner2, 1);
+    EXPECT_EQ(q.tris, (std::vector<int32_t>{1}));
+    EXPECT_EQ(q.nodes, (std::vector<int32_t>{0, 2, 3}));
+    EXPECT_EQ(q.connectivity, (std::vector<int32_t>{1, 2, 0}));
+
+    const fs::path file = dir / "p0001.vtu";
+    write_vtu_piece(file.string(), m2, s, q);
+    const ParsedVtu v = parse_vtu(read_all(file));
+    EXPECT_EQ(as<int32_t>(v.payload(v.get("PointData", "node_id")).second),
+              (std::vector<int32_t>{0, 2, 3}));
+    EXPECT_EQ(as<int32_t>(v.payload(v.get("CellData", "tri_id")).second), std::vector<int32_t>{1});
+    EXPECT_EQ(as<int32_t>(v.payload(v.get("CellData", "rank")).second), std::vector<int32_t>{1});
+    EXPECT_EQ(as<int32_t>(v.payload(v.get("Cells", "connectivity")).second),
+              (std::vector<int32_t>{1, 2, 0}));
+    EXPECT_EQ(as<int64_t>(v.payload(v.get("Cells", "offsets")).second), std::vector<int64_t>{3});
+    const auto pts = as<double>(v.payload(v.get("Points", "Points")).second);
+    const auto force = as<double>(v.payload(v.get("PointData", "force")).second);
+    ASSERT_EQ(pts.size(), 9u);
+    for (size_t k = 0; k < 3; ++k) {
+        const size_t i = static_cast<size_t>(q.nodes[k]);
+        EXPECT_EQ(pts[3 * k], s.x[i].x);
+        EXPECT_EQ(pts[3 * k + 1], s.x[i].y);
+        EXPECT_EQ(force[3 * k + 1], s.f[i].y);
+    }
+    const auto stress = as<double>(v.payload(v.get("CellData", "stress")).second);
+    EXPECT_EQ(stress[0], tri_fields(m2, s, 1).stress.xx);
+
+    const fs::path pvtu = dir / "frame.pvtu";
+    write_pvtu(pvtu.string(), m2, s, {"frame/p0000.vtu", "frame/p0001.vtu"});
+    const std::string text = read_all(pvtu);
+    EXPECT_NE(text.find("<VTKFile type=\"PUnstructuredGrid\""), std::string::npos);
+    EXPECT_NE(text.find("<Piece Source=\"frame/p0001.vtu\"/>"), std::string::npos);
+    EXPECT_NE(text.find("<PDataArray type=\"Int32\" Name=\"node_id\" NumberOfComponents=\"1\"/>"),
+              std::string::npos);
+    EXPECT_NE(text.find("Name=\"tri_id\""), std::string::npos);
+    EXPECT_NE(text.find("Name=\"stress\" NumberOfComponents=\"9\""), std::string::npos);
+}
+
 TEST(WriteVtu, ExtraFieldsAreAppendedAndTwoComponentsPadded) {
     const Model m = unit_square();
     const State s = deformed(m, identity2());
