@@ -1,7 +1,7 @@
 // fdem command-line program: run or check a scenario.
 //   fdem run SCENARIO [--out DIR] [--end-time T] [--threads N] [--quiet]
 //                     [--checkpoint-every T] [--restart FILE] [--print-hash]
-//                     [--progress-every S]
+//                     [--progress-every S] [--partition rcb|ids|random]
 //   fdem check SCENARIO
 // Exit codes: 0 success, 1 simulation failure, 2 usage or input error (including a checkpoint
 // that does not belong to the scenario), 130 / 143 stopped by SIGINT / SIGTERM after writing a
@@ -14,6 +14,7 @@
 #include <cstdlib>
 #ifdef FDEM_HAVE_MPI
 #include "parallel/mpi/mpi_comm.hpp"
+#include "parallel/mpi/rcb.hpp"
 #endif
 #include <cstring>
 #include <memory>
@@ -33,6 +34,7 @@
 #include "contact/contact.hpp"
 #include "fdem/fdem.hpp"
 #include "fracture/joints.hpp"
+#include "integrate/node_update.hpp"
 
 namespace {
 
@@ -70,7 +72,8 @@ struct RunOptions {
     double checkpoint_every = 0;  ///< simulated seconds between checkpoints; 0 = none
     std::string restart;          ///< checkpoint to continue from
     bool print_hash = false;
-    double progress_every = 30;  ///< wall seconds between progress lines when stderr is no tty
+    double progress_every = 30;     ///< wall seconds between progress lines when stderr is no tty
+    std::string partition = "rcb";  ///< distributed runs: rcb, ids or random node groups
 };
 
 // Rough resident size of the model and state [bytes], for `fdem check`; with fracture the
@@ -359,7 +362,27 @@ int run(const RunOptions& opt) {
     fdem::Simulation sim(std::move(sc));
     const fdem::Model& m = sim.model();
     const fdem::State& s = sim.state();
-    if (g_comm != nullptr) sim.distribute(*g_comm);  // before open_output: process 0 writes
+    if (g_comm != nullptr) {  // before open_output: process 0 writes
+        // the process of each node group (docs/parallel.md): any assignment gives the same bits
+        std::vector<int32_t> owner;
+        const int32_t groups = (m.num_nodes() + fdem::kNodeGroup - 1) / fdem::kNodeGroup;
+        if (opt.partition == "random") {  // a test of partition independence (spec T3)
+            owner.resize(static_cast<size_t>(groups));
+            uint64_t h = 0x9e3779b97f4a7c15ull;
+            for (int32_t g = 0; g < groups; ++g) {
+                h ^= h >> 31;
+                h *= 0xbf58476d1ce4e5b9ull;
+                h ^= h >> 27;
+                owner[static_cast<size_t>(g)] =
+                    static_cast<int32_t>(h % static_cast<uint64_t>(g_comm->size()));
+            }
+        } else if (opt.partition == "rcb") {
+#ifdef FDEM_HAVE_MPI
+            owner = fdem::rcb_group_owners(dynamic_cast<const fdem::MpiComm&>(*g_comm), m);
+#endif
+        }
+        sim.distribute(*g_comm, owner);
+    }
     sim.open_output("", opt.out_given ? std::string("--out") : std::string());
     const std::string out = sim.output_dir();
     if (!opt.restart.empty()) {
@@ -523,6 +546,13 @@ int main(int argc, char** argv) {
                         "continue from a checkpoint written for the same scenario");
     run_cmd->add_flag("--print-hash", ro.print_hash,
                       "with --quiet: print only 'hash <hex>' of the final x, v and energies");
+    run_cmd
+        ->add_option("--partition", ro.partition,
+                     "distributed runs (mpirun -np P): which process owns each group of 64 "
+                     "nodes: rcb (Zoltan recursive coordinate bisection, default), ids "
+                     "(contiguous node ids) or random (a test: every choice gives the same "
+                     "result); no effect on a one-process run")
+        ->check(CLI::IsMember({"rcb", "ids", "random"}));
     run_cmd
         ->add_option("--progress-every", ro.progress_every,
                      "when stderr is not a terminal: a progress line every S wall-clock seconds "

@@ -98,8 +98,10 @@ public:
     /// step; each then updates its share of the nodes and elements, and the State stays the same
     /// on all processes, bitwise the one-process run's. Only process 0 writes files; the others
     /// keep the output bookkeeping. comm must outlive the Simulation. Every later call that
-    /// steps is collective.
-    void distribute(const Comm& comm);
+    /// steps is collective. group_owner: the process of every node group (64 consecutive node
+    /// ids; e.g. parallel/mpi/rcb.hpp rcb_group_owners()), the same on every process; empty:
+    /// contiguous ranges of node ids. Any assignment gives the same bits.
+    void distribute(const Comm& comm, const std::vector<int32_t>& group_owner = {});
     bool output_open() const;
     const std::string& output_dir() const;  ///< "" while output is not open
     int64_t frames_written() const;         ///< output rows/frames so far (also before restart)

@@ -84,6 +84,42 @@ TEST(MpiComm, ReductionsAndBroadcast) {
     EXPECT_EQ(text, std::string("line 1\nline: 2\0x", 16));
 }
 
+TEST(MpiComm, MinOfSeveralAllGatherBytesAndExchange) {
+    const MpiComm comm;
+    const int P = comm.size(), r = comm.rank();
+    double m[2] = {static_cast<double>(r), -static_cast<double>(r)};
+    comm.min(m, 2);
+    EXPECT_EQ(m[0], 0.0);
+    EXPECT_EQ(m[1], -(P - 1.0));
+    // every process's bytes in rank order, process r contributing r + 1 bytes of value r
+    const std::vector<char> mine(static_cast<size_t>(r) + 1, static_cast<char>(r));
+    std::vector<char> all;
+    comm.allgather_bytes(mine, all);
+    std::vector<char> want;
+    for (int q = 0; q < P; ++q)
+        want.insert(want.end(), static_cast<size_t>(q) + 1, static_cast<char>(q));
+    EXPECT_EQ(all, want);
+    // exchange: process r sends q + 1 values 100 r + k to every q != r (none to itself)
+    std::vector<int> sc(static_cast<size_t>(P)), sd(static_cast<size_t>(P)),
+        rc(static_cast<size_t>(P)), rd(static_cast<size_t>(P));
+    std::vector<double> send, recv;
+    for (int q = 0; q < P; ++q) {
+        sd[static_cast<size_t>(q)] = static_cast<int>(send.size());
+        sc[static_cast<size_t>(q)] = q == r ? 0 : q + 1;
+        for (int k = 0; k < sc[static_cast<size_t>(q)]; ++k)
+            send.push_back(100.0 * r + k);
+        rd[static_cast<size_t>(q)] = static_cast<int>(recv.size());
+        rc[static_cast<size_t>(q)] = q == r ? 0 : r + 1;
+        recv.resize(recv.size() + static_cast<size_t>(rc[static_cast<size_t>(q)]), -1.0);
+    }
+    comm.exchange(send.data(), sc, sd, recv.data(), rc, rd);
+    for (int q = 0; q < P; ++q) {
+        for (int k = 0; k < rc[static_cast<size_t>(q)]; ++k)
+            EXPECT_EQ(recv[static_cast<size_t>(rd[static_cast<size_t>(q)] + k)], 100.0 * q + k)
+                << "from process " << q;
+    }
+}
+
 // D9: an error on one process stops every process with the same type and message (no hang:
 // ctest's timeout would catch one).
 TEST(RunCollectively, InputErrorOnTheLastProcessReachesAll) {

@@ -34,13 +34,15 @@ foreach(np 1 2 3 4)
 endforeach()
 
 # T1: `mpirun -np P fdem run` is bitwise the one-process run (state hash, history.csv,
-# bodies.csv, last VTU frame) for P = 1..4, ~400 steps of: a cantilever under gravity (one body
-# cut between processes), frictional contact (03), 100 particles (04), composite elements (05),
+# bodies.csv, last frame) for P = 1..4, ~400 steps of: a cantilever under gravity (one body
+# cut between processes), frictional contact (03), 2 500 particles (04: ~5 000 steps, so that
+# contacts across the cuts occur; without the contactor ghosts its frames differ), composite
+# elements (05),
 # follower pressure with mass damping (06), jointed disc between platens (08), and a ring that
 # fractures into 62 fragments (11: 170 joints broken by 1e-4 s)
 set(mpi_out ${CMAKE_CURRENT_BINARY_DIR}/mpi_out)
 set(ex ${PROJECT_SOURCE_DIR}/examples)
-foreach(case "01_cantilever:0.008" "03_contact_slide:0.002" "04_particles:1.6e-4"
+foreach(case "01_cantilever:0.008" "03_contact_slide:0.002" "04_particles:2e-3"
         "05_composite:0.002" "06_pressurised_ring:0.03" "08_brazilian_disc:4e-6"
         "11_impact_fragmentation:1e-4")
   string(REPLACE ":" ";" case "${case}")
@@ -52,6 +54,28 @@ foreach(case "01_cantilever:0.008" "03_contact_slide:0.002" "04_particles:1.6e-4
                    ${ex}/${name}/scenario.toml ${mpi_out}/${name} "1 2 3 4" --end-time ${end})
   set_tests_properties(mpi.same_as_serial.${name} PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
                        PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+endforeach()
+# Ghosts (spec D6): a kick, a follower pressure and a support reaction, whose nodes each
+# process reads beyond its own
+add_test(NAME mpi.same_as_serial.kick_load_support
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${mpi_dir}/kick_load.toml ${mpi_out}/kick_load "2 3 4")
+set_tests_properties(mpi.same_as_serial.kick_load_support PROPERTIES LABELS mpi TIMEOUT 300
+                     PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+# T3: the result does not depend on the partition: a random owner per node group (4 processes)
+# and contiguous node ids (3) instead of Zoltan's RCB
+foreach(part "random:4" "ids:3")
+  string(REPLACE ":" ";" part "${part}")
+  list(GET part 0 how)
+  list(GET part 1 np)
+  add_test(NAME mpi.same_as_serial.partition_${how}
+           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                   ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                   ${ex}/04_particles/scenario.toml ${mpi_out}/partition_${how} "${np}"
+                   --end-time 1e-3 --partition ${how})
+  set_tests_properties(mpi.same_as_serial.partition_${how} PROPERTIES LABELS mpi TIMEOUT 300
+                       PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
 endforeach()
 # D13: [output] merge = true: process 0 writes the serial .vtu frames instead of .pvtu pieces
 add_test(NAME mpi.same_as_serial.merged_frames

@@ -22,6 +22,7 @@
 #include "contact/law.hpp"
 #include "contact/legacy_triangle.hpp"
 #include "detect/broad_phase.hpp"
+#include "parallel/distributed.hpp"
 
 namespace fdem {
 
@@ -167,6 +168,12 @@ inline const T* find_pair_from(const std::vector<T>& list, size_t& at, NodeId j,
         }
     }
     return at < n && list[at].node == j && list[at].body == c ? &list[at] : nullptr;
+}
+
+// does the release of active pair a test whether its target went inside the contactor (spec
+// §4.6)? Only deep pairs of two bodies
+inline bool lost_test_needed(const Model& m, const ContactTopology& ct, const ActiveContact& a) {
+    return a.h.depth_ratio > kLostCheckRatio && a.body != m.node_body[target_node(ct, a.node)];
 }
 
 // does a pair of contactor c and target body bt continue from cs.rebase in this step (eq. 9.26)?
@@ -412,8 +419,11 @@ void body_boxes_reference(const ContactTopology& ct, const Vec2* x, const Vec2* 
         box[b] = reference_box(ct, x, xv, b);
 }
 
-void body_boxes(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyBox* box,
-                int32_t nbodies) {
+namespace {
+
+// body_boxes() for the bodies list[0 .. count) (every body when list is nullptr)
+void boxes_of(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyBox* box,
+              int32_t nbodies, const BodyId* list, int32_t count) {
     constexpr Real inf = std::numeric_limits<Real>::infinity();
     const bool compact = ct.body_cnode_begin.size() == static_cast<size_t>(nbodies) + 1 &&
                          ct.sub_local.size() == ct.sub_tri.size();
@@ -421,7 +431,8 @@ void body_boxes(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyBo
     const NodeId nreal_nodes = ct.num_real_nodes;
     // bodies are independent: shared among the threads when called in a parallel region
 #pragma omp for schedule(static)
-    for (BodyId b = 0; b < nbodies; ++b) {
+    for (int32_t entry = 0; entry < count; ++entry) {
+        const BodyId b = list != nullptr ? list[entry] : entry;
         const int32_t nb = compact ? ct.body_cnode_begin[b] : 0;
         const int32_t nn = compact ? ct.body_cnode_begin[b + 1] - nb : kBoxLocalNodes + 1;
         if (nn > kBoxLocalNodes) {
@@ -496,6 +507,13 @@ void body_boxes(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyBo
 #endif
         box[b] = finish_box(lx, ly, hx, hy, amin, nonzero);
     }
+}
+
+}  // namespace
+
+void body_boxes(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyBox* box,
+                int32_t nbodies) {
+    boxes_of(ct, x, xv, box, nbodies, nullptr, nbodies);
 }
 
 namespace {
@@ -770,8 +788,10 @@ void probe_law_depths(const Model& m, State& s, std::span<const BodyId> dirty) {
     cs.rebase_pending = true;
 }
 
-// add_contact_forces() with share == nullptr; else as one process of a distributed run
-void contact_forces_impl(const Model& m, State& s, const ContactShare* share, const Comm* comm) {
+// add_contact_forces() with plan == nullptr; else as one process of a distributed run
+void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm) {
+    const ContactShare* share = plan != nullptr ? &plan->contact : nullptr;
+    const bool ghosts = plan != nullptr && plan->ghosts.active;
     const ContactModel& cm = m.contact;
     const ContactTopology& ct = s.topology;
     ContactState& cs = s.contact;
@@ -807,23 +827,23 @@ void contact_forces_impl(const Model& m, State& s, const ContactShare* share, co
     // 2. skin (spec §2.3): x^n - x^{n-1} = dt v^{n-1/2}; two objects close by at most
     //    2 dt max|v| per step, so the candidates stay complete until the sum exceeds b
     if (!cs.need_rebuild) {
-        // four running maxima (max is exact and order-free, NaN is skipped by each the same
-        // way as by one): four independent dependency chains instead of one
-        Real v2s[4] = {0, 0, 0, 0};
-        const NodeId nn = m.num_nodes();
-        NodeId i = 0;
-        for (; i + 4 <= nn; i += 4) {
-            for (int k = 0; k < 4; ++k)
-                v2s[k] = std::max(v2s[k], norm2(v[i + k]));
-        }
-        for (; i < nn; ++i)
-            v2s[0] = std::max(v2s[0], norm2(v[i]));
-        const Real v2 = std::max(std::max(v2s[0], v2s[1]), std::max(v2s[2], v2s[3]));
+        // (a distributed run: the maximum over the processes' own nodes, reduced with the
+        // element pass's smallest det F in step(): the same value, max is exact)
+        const std::pair<NodeId, NodeId> all_nodes{0, m.num_nodes()};
+        const Real v2 = plan != nullptr ? plan->max_speed2 : max_speed2(v, {&all_nodes, 1});
         cs.skin_used += 2.0 * dt * std::sqrt(v2);
         if (cs.skin_used > cm.buffer) cs.need_rebuild = true;
     }
     if (cs.need_rebuild) {
+        if (ghosts) {
+            // the broad phase reads every contact node, and the new ghosts' v is read below
+            gather_nodes(s.x.data(), *plan, *comm);
+            gather_nodes(s.v.data(), *plan, *comm);
+            update_virtual_nodes(m, s);
+        }
         find_candidates(m, ct, x, xc, xv, cs.cand, cs.broad);
+        if (share != nullptr) share->boxes_valid = false;
+        if (ghosts) rebuild_ghosts(m, s, *plan, *comm);
         cs.need_rebuild = false;
         cs.skin_used = 0;
         ++cs.rebuilds;
@@ -849,23 +869,30 @@ void contact_forces_impl(const Model& m, State& s, const ContactShare* share, co
     }
     PairResult* out = cs.pair_out.data();
     int32_t* in_contact = cs.in_contact.data();
-    // the pairs this process evaluates: all, or those of its targets (ContactShare; the
-    // candidates are sorted by target)
-    int32_t pair_begin = 0, pair_end = npairs;
-    if (share != nullptr) {
-        const NodeId* cn = cs.cand.node.data();
-        if (!share->first)
-            pair_begin =
-                static_cast<int32_t>(std::lower_bound(cn, cn + npairs, share->target_begin) - cn);
-        if (!share->last)
-            pair_end =
-                static_cast<int32_t>(std::lower_bound(cn, cn + npairs, share->target_end) - cn);
-    }
     int32_t chunk_count[kPairChunks];
-    auto chunk_begin = [pair_begin, pair_end](int32_t ch) {
-        return pair_begin +
-               static_cast<int32_t>(static_cast<int64_t>(pair_end - pair_begin) * ch / kPairChunks);
+    auto chunk_begin = [npairs](int32_t ch) {
+        return static_cast<int32_t>(static_cast<int64_t>(npairs) * ch / kPairChunks);
     };
+    // a distributed run: only the pairs of this process's targets (spec D5.3), and only the
+    // boxes of their contactors (listed again after every broad phase)
+    const int32_t* owner = plan != nullptr ? plan->node_owner.data() : nullptr;
+    const int32_t my_rank = plan != nullptr ? plan->rank : 0;
+    if (share != nullptr && !share->boxes_valid) {
+        std::vector<uint8_t>& mark = share->body_mark;
+        mark.assign(static_cast<size_t>(m.num_bodies()), 0);
+        for (int32_t pr = 0; pr < npairs; ++pr) {
+            if (owner[target_node(ct, cs.cand.node[pr])] == my_rank)
+                mark[static_cast<size_t>(cs.cand.body[pr])] = 1;
+        }
+        share->box_bodies.clear();
+        for (BodyId b = 0; b < m.num_bodies(); ++b) {
+            if (mark[static_cast<size_t>(b)]) share->box_bodies.push_back(b);
+        }
+        share->boxes_valid = true;
+    }
+    const BodyId* box_list = share != nullptr ? share->box_bodies.data() : nullptr;
+    const int32_t box_count =
+        share != nullptr ? static_cast<int32_t>(share->box_bodies.size()) : m.num_bodies();
     {
         const ContactState& ccs = cs;
         const NodeId* cand_node = cs.cand.node.data();
@@ -875,20 +902,30 @@ void contact_forces_impl(const Model& m, State& s, const ContactShare* share, co
         const int32_t nbodies = m.num_bodies();
         // one parallel region: the boxes (a worksharing loop inside body_boxes(), whose
         // implicit barrier completes them), then the pairs
-#pragma omp parallel if (pair_end - pair_begin > kMinParallelPairs)
+#pragma omp parallel if (npairs > kMinParallelPairs)
         {
-            if (boxes) body_boxes(ct, xc, xv, box, nbodies);
+            if (boxes) boxes_of(ct, xc, xv, box, nbodies, box_list, box_count);
 #pragma omp for schedule(static)
             for (int32_t ch = 0; ch < kPairChunks; ++ch) {
                 const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
                 // pass 1, branch-free: the pairs the box does not reject, in order
                 int32_t n = b;
-                for (int32_t pr = b; pr < e; ++pr) {
-                    // with body ids far apart in space (shuffled numbering) the box is a cache miss
-                    if (pr + kBoxPrefetch < e)
-                        __builtin_prefetch(&box[cand_body[pr + kBoxPrefetch]]);
-                    in_contact[n] = pr;
-                    n += !box_rejects(box[cand_body[pr]], target_point(ct, x, cand_node[pr]));
+                if (owner == nullptr) {
+                    for (int32_t pr = b; pr < e; ++pr) {
+                        // with body ids far apart in space (shuffled numbering) the box is a
+                        // cache miss
+                        if (pr + kBoxPrefetch < e)
+                            __builtin_prefetch(&box[cand_body[pr + kBoxPrefetch]]);
+                        in_contact[n] = pr;
+                        n += !box_rejects(box[cand_body[pr]], target_point(ct, x, cand_node[pr]));
+                    }
+                } else {
+                    for (int32_t pr = b; pr < e; ++pr) {
+                        const NodeId j = cand_node[pr];
+                        if (owner[target_node(ct, j)] != my_rank) continue;
+                        in_contact[n] = pr;
+                        n += !box_rejects(box[cand_body[pr]], target_point(ct, x, j));
+                    }
                 }
                 // pass 2: locate and law of those; the pairs in contact, compacted in place
                 // (ascending pairs: their histories are looked up from a cursor)
@@ -913,8 +950,8 @@ void contact_forces_impl(const Model& m, State& s, const ContactShare* share, co
         span_count[ch] = chunk_count[ch];
     }
     if (share != nullptr) {
-        // records (pair index, result), this process's in pair order; the processes' ranges
-        // are ascending in rank order, so the concatenation is in pair order
+        // records (pair index, result), each process's in pair order; the gathered ones are
+        // put in pair order by share->order
         constexpr size_t kRec = sizeof(int32_t) + sizeof(PairResult);
         static_assert(std::is_trivially_copyable_v<PairResult>);
         std::vector<char>& send = share->send;
@@ -940,6 +977,31 @@ void contact_forces_impl(const Model& m, State& s, const ContactShare* share, co
         nspans = 1;
         span_begin[0] = 0;
         span_count[0] = static_cast<int32_t>(n_all);
+        std::vector<int32_t>& order = share->order;
+        order.resize(n_all);
+        for (size_t k = 0; k < n_all; ++k)
+            order[k] = static_cast<int32_t>(k);
+        std::sort(order.begin(), order.end(),
+                  [in_contact](int32_t a, int32_t b) { return in_contact[a] < in_contact[b]; });
+    }
+    const int32_t* perm = share != nullptr ? share->order.data() : nullptr;
+    if (ghosts) {
+        // the lost-contact test of a released pair (below) reads the contactor's boundary and
+        // the target: all-gather x first if any pair it tests is released this step (the same
+        // decision on every process: the active list and the gathered pairs are replicated)
+        bool test = false;
+        size_t a = 0;
+        for (int32_t idx = 0; idx < span_count[0] && !test; ++idx) {
+            const int32_t pr = in_contact[perm[idx]];
+            const NodeId j = cs.cand.node[pr];
+            const BodyId c = cs.cand.body[pr];
+            for (; a < cs.active.size() && pair_below(cs.active[a], j, c); ++a)
+                test = test || lost_test_needed(m, ct, cs.active[a]);
+            if (a < cs.active.size() && cs.active[a].node == j && cs.active[a].body == c) ++a;
+        }
+        for (; a < cs.active.size() && !test; ++a)
+            test = lost_test_needed(m, ct, cs.active[a]);
+        if (test) gather_nodes(s.x.data(), *plan, *comm);
     }
 
     // 3b. apply in pair order, merged with the previous active list (both sorted by (node,
@@ -959,7 +1021,7 @@ void contact_forces_impl(const Model& m, State& s, const ContactShare* share, co
         bool lost = false;
         // (not for a self-contact pair: the node lies on its own body's boundary, where the
         // crossing test has no meaning)
-        if (a.h.depth_ratio > kLostCheckRatio && a.body != bt &&
+        if (lost_test_needed(m, ct, a) &&
             inside_body(ct, a.body, xc, target_point(ct, x, a.node))) {
             lost = true;  // left the boundary layer inwards: penetration too deep (spec §4.6)
             ++cs.lost_inside;
@@ -987,7 +1049,8 @@ void contact_forces_impl(const Model& m, State& s, const ContactShare* share, co
     // while loop, before the next larger key), so the order of every sum is unchanged
     for (int32_t sp = 0; sp < nspans; ++sp) {
         const int32_t b = span_begin[sp];
-        for (int32_t k = b; k < b + span_count[sp]; ++k) {
+        for (int32_t idx = b; idx < b + span_count[sp]; ++idx) {
+            const int32_t k = perm != nullptr ? perm[idx] : idx;
             const int32_t pr = in_contact[k];
             const NodeId j = cs.cand.node[pr];
             const BodyId c = cs.cand.body[pr];
@@ -1029,12 +1092,28 @@ void contact_forces_impl(const Model& m, State& s, const ContactShare* share, co
 
 }  // namespace
 
+Real max_speed2(const Vec2* v, std::span<const std::pair<NodeId, NodeId>> runs) {
+    // four running maxima (max is exact and order-free, NaN is skipped by each the same way as
+    // by one): four independent dependency chains instead of one
+    Real v2s[4] = {0, 0, 0, 0};
+    for (const auto& [b, e] : runs) {
+        NodeId i = b;
+        for (; i + 4 <= e; i += 4) {
+            for (int k = 0; k < 4; ++k)
+                v2s[k] = std::max(v2s[k], norm2(v[i + k]));
+        }
+        for (; i < e; ++i)
+            v2s[0] = std::max(v2s[0], norm2(v[i]));
+    }
+    return std::max(std::max(v2s[0], v2s[1]), std::max(v2s[2], v2s[3]));
+}
+
 void add_contact_forces(const Model& m, State& s) {
     contact_forces_impl(m, s, nullptr, nullptr);
 }
 
-void add_contact_forces(const Model& m, State& s, const ContactShare& share, const Comm& comm) {
-    contact_forces_impl(m, s, &share, &comm);
+void add_contact_forces(const Model& m, State& s, const StepPlan& plan, const Comm& comm) {
+    contact_forces_impl(m, s, &plan, &comm);
 }
 
 namespace {

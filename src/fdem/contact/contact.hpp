@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <span>
+#include <utility>
 #ifdef __SSE2__
 #include <emmintrin.h>
 #endif
@@ -34,24 +35,31 @@ void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> 
 /// update pair history, contact energy and contact dissipation in s.energy / s.contact.
 void add_contact_forces(const Model& m, State& s);
 
-/// One process's share of the narrow phase in a distributed run (issue #15, docs/parallel.md):
-/// the candidate pairs whose target id lies in [target_begin, target_end) (the first process
-/// from the lowest id, the last to the highest: edge targets, numbered after the real nodes,
-/// fall to it). The pair belongs to its target's process (spec D5.3).
+/// Scratch of a process's share of the narrow phase in a distributed run (StepPlan::contact).
 struct ContactShare {
-    NodeId target_begin = 0;
-    NodeId target_end = 0;
-    bool first = true;                     ///< no lower bound
-    bool last = true;                      ///< no upper bound
     mutable std::vector<char> send, recv;  ///< the exchange of the pairs in contact (grow only)
+    mutable std::vector<int32_t> order;    ///< the gathered pairs in pair order
+    /// the contactors of the process's candidate pairs: the only body boxes it computes
+    mutable std::vector<BodyId> box_bodies;
+    mutable std::vector<uint8_t> body_mark;
+    mutable bool boxes_valid = false;  ///< box_bodies lists the current candidates' contactors
 };
 
-/// add_contact_forces() as one process of a distributed run on a replicated State: the
-/// process evaluates its share of the candidate pairs (narrow phase and law, the expensive
-/// part), the pairs in contact are all-gathered (comm.allgather_bytes, in pair order), and
-/// every process applies all of them in pair order as the serial loop does: the same f,
-/// f_contact, histories and energies on every process, bitwise the serial ones. Collective.
-void add_contact_forces(const Model& m, State& s, const ContactShare& share, const Comm& comm);
+struct StepPlan;  // parallel/distributed.hpp
+
+/// The largest |v_i|^2 over the nodes of runs ([first, second) ranges): the skin trigger's
+/// speed (spec §2.3); exact and independent of the order, so a maximum over processes of
+/// their own nodes' values is the serial value.
+Real max_speed2(const Vec2* v, std::span<const std::pair<NodeId, NodeId>> runs);
+
+/// add_contact_forces() as one process of a distributed run (issue #15, docs/parallel.md): the
+/// process evaluates the candidate pairs whose target it owns (its real node, or the first end
+/// node of an edge target: spec D5.3; narrow phase and law, the expensive part), the pairs in
+/// contact are all-gathered and put in pair order, and every process applies all of them as the
+/// serial loop does: the same f, f_contact, histories and energies on every process, bitwise
+/// the serial ones. The skin trigger is the maximum over the processes' own nodes; a broad-phase
+/// rebuild all-gathers x and v first and rebuilds the ghost lists (plan.ghosts). Collective.
+void add_contact_forces(const Model& m, State& s, const StepPlan& plan, const Comm& comm);
 
 /// Positions and velocities of the virtual contact nodes (s.contact.xv, vv) from s.x, s.v
 /// (spec §4.4-2). add_contact_forces() calls it first; exposed for tests and output.

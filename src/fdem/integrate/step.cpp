@@ -19,6 +19,9 @@
 // then over the blocks in block order (docs/performance.md).
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -217,6 +220,9 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     Vec2* f = s.f.data();
     const bool first = s.step == 0;
     if (first) apply_initial_supports(m, s);  // controls changed since make_state()
+    // ghost lists after distribute() or a restore (every node is current then)
+    if (plan != nullptr && plan->ghosts.active && plan->ghosts.dirty)
+        rebuild_ghosts(m, s, *plan, *comm);
 
     // 0. load forces F^n on x^n, and the half of their trapezoidal work over [x^{n-1}, x^n]
     // that F^n does: 1/2 F^n . dt v^{n-1/2} (theory eq. 4.7), with v^{n-1/2} before any kick
@@ -229,7 +235,14 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         if (!first) load_work_now = 0.5 * dt * load_power(m, load_f, v);
     }
 
-    // 1. kicks
+    // 1. kicks (a distributed run with ghosts: they read and write every node of their
+    // bodies, so x and v are all-gathered first on the steps that have one)
+    if (plan != nullptr && plan->ghosts.active &&
+        s.next_kick < static_cast<int32_t>(m.kicks.size()) &&
+        m.kicks[static_cast<size_t>(s.next_kick)].time <= s.time + 0.5 * s.dt) {
+        gather_nodes(x, *plan, *comm);
+        gather_nodes(v, *plan, *comm);
+    }
     apply_kicks(m, s);
 
     // 2. clear forces (without contact, f_contact is never written and stays zero)
@@ -253,19 +266,26 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     } else {
         // owner computes (spec D7.1); energies as exact sums over the processes (theory §4.4)
         const ElementSubsetPass sp = add_internal_forces(m, s, plan->elements);
-        ExactSum sums[2] = {sp.strain_energy, sp.viscous_power};
-        comm->sum(sums, 2);
-        pass.strain_energy = sums[0].value();
-        pass.viscous_power = sums[1].value();
-        // the smallest det F over the processes, ties to the smallest chunk: the serial one
-        pass.min_jacobian = comm->min(sp.min_jacobian);
+        if (s.need_energy || plan->viscous) {  // (else both are zero on every process)
+            ExactSum sums[2] = {sp.strain_energy, sp.viscous_power};
+            comm->sum(sums, 2);
+            pass.strain_energy = sums[0].value();
+            pass.viscous_power = sums[1].value();
+        }
+        // the smallest det F over the processes, ties to the smallest chunk: the serial one;
+        // with the skin trigger's max |v|^2 of contact (v is final for this step's contact
+        // after the kicks) in one reduction (spec D8.3)
+        double mins[2] = {sp.min_jacobian, -max_speed2(v, plan->own_runs)};
+        comm->min(mins, 2);
+        pass.min_jacobian = mins[0];
+        plan->max_speed2 = -mins[1];
         if (!(pass.min_jacobian > 0)) {  // the same branch on every process
             const bool mine = sp.min_jacobian == pass.min_jacobian;
             const Real chunk = comm->min(mine ? sp.min_jacobian_chunk : 1e300);
             pass.min_jacobian_tri = static_cast<TriId>(
                 comm->min(mine && sp.min_jacobian_chunk == chunk ? sp.min_jacobian_tri : 1e300));
             // the failure below: failure.vtu shows the forces of the serial run at this point
-            comm->allgatherv(&f[0].x, plan->node_counts, plan->node_displs);
+            gather_forces(s, *plan, *comm);
         }
     }
     if (pass.min_jacobian_tri != kNone && !(pass.min_jacobian > 0)) {
@@ -287,7 +307,7 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         } catch (const SimulationError&) {
             // every process fails alike (the joints are computed everywhere): failure.vtu shows
             // the forces of the serial run at this point
-            if (plan != nullptr) comm->allgatherv(&f[0].x, plan->node_counts, plan->node_displs);
+            if (plan != nullptr) gather_forces(s, *plan, *comm);
             throw;
         }
         if (s.need_energy) {
@@ -302,7 +322,7 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     if (plan == nullptr) {
         add_contact_forces(m, s);
     } else {
-        add_contact_forces(m, s, plan->contact, *comm);  // the pairs of the owned targets
+        add_contact_forces(m, s, *plan, *comm);  // the pairs of the owned targets
     }
     if (loaded) add_load_forces(m, load_f, f);
 
@@ -334,21 +354,26 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     if (s.scratch_sums.size() < kNodeSlots * static_cast<size_t>(n_groups)) {
         s.scratch_sums.resize(kNodeSlots * static_cast<size_t>(n_groups));  // first call only
     }
-    const NodeId own_begin = plan != nullptr ? plan->node_begin : 0;
-    const NodeId own_end = plan != nullptr ? plan->node_end : nn;
+    // the nodes this process updates: all, or its runs of whole groups
+    const std::pair<NodeId, NodeId> all_nodes{0, nn};
+    const std::span<const std::pair<NodeId, NodeId>> runs =
+        plan != nullptr ? std::span<const std::pair<NodeId, NodeId>>(plan->own_runs)
+                        : std::span<const std::pair<NodeId, NodeId>>(&all_nodes, 1);
     Real* part = s.scratch_sums.data();
     const Real* inv_mass = m.node_inv_mass.data();
     const bool gravity = g.x != 0 || g.y != 0;
     const NodeUpdate u{dt, dt_v, c, g, first};
     const auto update = [&]<bool kEnergy>() {
-        if (gravity && mass_damped) {
-            update_nodes<true, true, kEnergy>(m, u, x, v, f, part, own_begin, own_end);
-        } else if (gravity) {
-            update_nodes<true, false, kEnergy>(m, u, x, v, f, part, own_begin, own_end);
-        } else if (mass_damped) {
-            update_nodes<false, true, kEnergy>(m, u, x, v, f, part, own_begin, own_end);
-        } else {
-            update_nodes<false, false, kEnergy>(m, u, x, v, f, part, own_begin, own_end);
+        for (const auto& [b, e] : runs) {
+            if (gravity && mass_damped) {
+                update_nodes<true, true, kEnergy>(m, u, x, v, f, part, b, e);
+            } else if (gravity) {
+                update_nodes<true, false, kEnergy>(m, u, x, v, f, part, b, e);
+            } else if (mass_damped) {
+                update_nodes<false, true, kEnergy>(m, u, x, v, f, part, b, e);
+            } else {
+                update_nodes<false, false, kEnergy>(m, u, x, v, f, part, b, e);
+            }
         }
     };
     if (s.need_energy) {
@@ -361,12 +386,13 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     // (only the sums this step evaluates: the others are zeros)
     ExactSum kinetic2, gravity_work, damping_power;
     if (s.need_energy || mass_damped) {
-        for (NodeId grp = own_begin / kNodeGroup; grp < (own_end + kNodeGroup - 1) / kNodeGroup;
-             ++grp) {
-            const Real* slot = part + kNodeSlots * static_cast<size_t>(grp);
-            kinetic2.add(slot[0]);
-            gravity_work.add(slot[1]);
-            damping_power.add(slot[2]);
+        for (const auto& [b, e] : runs) {
+            for (NodeId grp = b / kNodeGroup; grp < (e + kNodeGroup - 1) / kNodeGroup; ++grp) {
+                const Real* slot = part + kNodeSlots * static_cast<size_t>(grp);
+                kinetic2.add(slot[0]);
+                gravity_work.add(slot[1]);
+                damping_power.add(slot[2]);
+            }
         }
     }
 
@@ -437,9 +463,16 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         // every process holds the whole State again: the owned x and v and the supports'
         // reactions; f_contact is applied alike everywhere; f (element forces of other nodes
         // were partial) only where it is read: output steps (step_distributed())
-        comm->allgatherv(&x[0].x, plan->node_counts, plan->node_displs);
-        comm->allgatherv(&v[0].x, plan->node_counts, plan->node_displs);
-        if (s.need_energy) comm->allgatherv(&f[0].x, plan->node_counts, plan->node_displs);
+        // (with ghosts: x and v of the nodes each process reads, from their owners; every node
+        // on output steps, and after a step that lost a contact (its message names the node's
+        // position))
+        if (plan->ghosts.active && !s.need_energy && s.contact.lost_inside == 0) {
+            exchange_ghosts(s, *plan, *comm);
+        } else {
+            gather_nodes(s.x.data(), *plan, *comm);
+            gather_nodes(s.v.data(), *plan, *comm);
+        }
+        if (s.need_energy) gather_forces(s, *plan, *comm);
         if (!plan->bc_order.empty()) {
             double* buf = plan->bc_buffer.data();
             const size_t b = static_cast<size_t>(plan->bc_displs[plan->rank]) / 2;
@@ -454,12 +487,14 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
                 s.bc_reaction[static_cast<size_t>(plan->bc_order[j])] = {buf[2 * j],
                                                                          buf[2 * j + 1]};
         }
-        ExactSum sums[4] = {kinetic2, gravity_work, damping_power, support_work_sum};
-        comm->sum(sums, 4);
-        kinetic2 = sums[0];
-        gravity_work = sums[1];
-        damping_power = sums[2];
-        support_work_sum = sums[3];
+        if (s.need_energy || mass_damped || !m.bcs.empty()) {  // (else all four are zero)
+            ExactSum sums[4] = {kinetic2, gravity_work, damping_power, support_work_sum};
+            comm->sum(sums, 4);
+            kinetic2 = sums[0];
+            gravity_work = sums[1];
+            damping_power = sums[2];
+            support_work_sum = sums[3];
+        }
     }
     const Real support_work = support_work_sum.value();
     s.energy.time = s.time;
@@ -502,39 +537,100 @@ void step_distributed(const Model& m, State& s, const StepPlan& plan, const Comm
     step_impl(m, s, &plan, &comm);
 }
 
-void gather_forces(State& s, const StepPlan& plan, const Comm& comm) {
-    comm.allgatherv(&s.f[0].x, plan.node_counts, plan.node_displs);
+void gather_nodes(Vec2* a, const StepPlan& plan, const Comm& comm) {
+    double* buf = plan.gather_buffer.data();
+    const NodeId* order = plan.gather_order.data();
+    const size_t b = static_cast<size_t>(plan.node_displs[static_cast<size_t>(plan.rank)]) / 2;
+    const size_t e = b + static_cast<size_t>(plan.node_counts[static_cast<size_t>(plan.rank)]) / 2;
+    for (size_t k = b; k < e; ++k) {
+        buf[2 * k] = a[order[k]].x;
+        buf[2 * k + 1] = a[order[k]].y;
+    }
+    comm.allgatherv(buf, plan.node_counts, plan.node_displs);
+    const size_t n = plan.gather_order.size();
+    for (size_t k = 0; k < n; ++k) {
+        if (k == b) {
+            k = e - 1;  // (own values: already there)
+            continue;
+        }
+        a[order[k]] = {buf[2 * k], buf[2 * k + 1]};
+    }
 }
 
-StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs) {
+void gather_forces(State& s, const StepPlan& plan, const Comm& comm) {
+    gather_nodes(s.f.data(), plan, comm);
+}
+
+void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<double>& weight) {
+    const NodeId nn = m.num_nodes();
+    const NodeId groups = (nn + kNodeGroup - 1) / kNodeGroup;
+    centre.assign(static_cast<size_t>(groups), Vec2{});
+    weight.assign(static_cast<size_t>(groups), 1.0);
+    for (NodeId g = 0; g < groups; ++g) {
+        const NodeId b = g * kNodeGroup, e = std::min(nn, b + kNodeGroup);
+        Vec2 c;
+        for (NodeId i = b; i < e; ++i)
+            c += m.node_x0[static_cast<size_t>(i)];
+        centre[static_cast<size_t>(g)] = (1.0 / static_cast<Real>(e - b)) * c;
+    }
+    for (const auto& t : m.tri_nodes)
+        weight[static_cast<size_t>(t[0] / kNodeGroup)] += 1.0;
+}
+
+StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
+                        std::span<const int32_t> group_owner) {
     StepPlan p;
     p.rank = rank;
     p.procs = procs;
     const NodeId nn = m.num_nodes();
     const NodeId groups = (nn + kNodeGroup - 1) / kNodeGroup;
+    std::vector<int32_t> owner_of_group(static_cast<size_t>(groups), 0);
+    if (!group_owner.empty()) {
+        if (group_owner.size() != static_cast<size_t>(groups)) {
+            throw std::invalid_argument(
+                "make_step_plan: group_owner must have one entry per node group");
+        }
+        for (NodeId g = 0; g < groups; ++g) {
+            const int32_t o = group_owner[static_cast<size_t>(g)];
+            if (o < 0 || o >= procs)
+                throw std::invalid_argument("make_step_plan: owner out of range");
+            owner_of_group[static_cast<size_t>(g)] = o;
+        }
+    } else {
+        // contiguous ranges of whole groups, about the same number of groups each
+        for (int32_t r = 0; r < procs; ++r) {
+            for (NodeId g = static_cast<NodeId>(int64_t{groups} * r / procs);
+                 g < static_cast<NodeId>(int64_t{groups} * (r + 1) / procs); ++g)
+                owner_of_group[static_cast<size_t>(g)] = r;
+        }
+    }
     p.node_owner.assign(static_cast<size_t>(nn), 0);
+    for (NodeId i = 0; i < nn; ++i)
+        p.node_owner[static_cast<size_t>(i)] = owner_of_group[static_cast<size_t>(i / kNodeGroup)];
+    for (NodeId g = 0; g < groups; ++g) {
+        if (owner_of_group[static_cast<size_t>(g)] != rank) continue;
+        const NodeId b = g * kNodeGroup, e = std::min(nn, b + kNodeGroup);
+        if (!p.own_runs.empty() && p.own_runs.back().second == b) {
+            p.own_runs.back().second = e;
+        } else {
+            p.own_runs.emplace_back(b, e);
+        }
+    }
     p.node_counts.assign(static_cast<size_t>(procs), 0);
     p.node_displs.assign(static_cast<size_t>(procs), 0);
     for (int32_t r = 0; r < procs; ++r) {
-        // contiguous ranges of whole groups, about the same number of groups each
-        const NodeId b =
-            std::min(nn, static_cast<NodeId>(int64_t{groups} * r / procs) * kNodeGroup);
-        const NodeId e =
-            std::min(nn, static_cast<NodeId>(int64_t{groups} * (r + 1) / procs) * kNodeGroup);
-        for (NodeId i = b; i < e; ++i)
-            p.node_owner[static_cast<size_t>(i)] = r;
-        p.node_displs[static_cast<size_t>(r)] = 2 * b;
-        p.node_counts[static_cast<size_t>(r)] = 2 * (e - b);
-        if (r == rank) {
-            p.node_begin = b;
-            p.node_end = e;
+        p.node_displs[static_cast<size_t>(r)] = 2 * static_cast<int>(p.gather_order.size());
+        for (NodeId i = 0; i < nn; ++i) {
+            if (p.node_owner[static_cast<size_t>(i)] == r) p.gather_order.push_back(i);
         }
+        p.node_counts[static_cast<size_t>(r)] =
+            2 * static_cast<int>(p.gather_order.size()) - p.node_displs[static_cast<size_t>(r)];
     }
+    p.gather_buffer.assign(2 * static_cast<size_t>(nn), 0.0);
     p.elements = element_subset(m, p.node_owner, rank);
-    p.contact.target_begin = p.node_begin;
-    p.contact.target_end = p.node_end;
-    p.contact.first = rank == 0;
-    p.contact.last = rank == procs - 1;
+    init_ghosts(m, p);
+    for (const Material& mt : m.materials)
+        p.viscous = p.viscous || mt.viscosity > 0 || mt.damping_ratio > 0;
     // support slots (the order of Model::bcs and their nodes) grouped by the owner of the node
     std::vector<std::vector<int32_t>> by_owner(static_cast<size_t>(procs));
     int32_t slot = 0;
@@ -555,15 +651,19 @@ StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs) {
     return p;
 }
 
+void throw_not_finite(const Model& m, const State& s, NodeId i) {
+    throw SimulationError(
+        s.step, s.time, fmt::format("node {} (body {})", i, m.node_body[i]),
+        fmt::format("position or velocity is not finite; the run is unstable: reduce dt "
+                    "(now {:.3g} s) or check penalties and damping",
+                    s.dt));
+}
+
 void check_state(const Model& m, const State& s) {
     for (NodeId i = 0; i < m.num_nodes(); ++i) {
         if (!std::isfinite(s.x[i].x) || !std::isfinite(s.x[i].y) || !std::isfinite(s.v[i].x) ||
             !std::isfinite(s.v[i].y)) {
-            throw SimulationError(
-                s.step, s.time, fmt::format("node {} (body {})", i, m.node_body[i]),
-                fmt::format("position or velocity is not finite; the run is unstable: reduce dt "
-                            "(now {:.3g} s) or check penalties and damping",
-                            s.dt));
+            throw_not_finite(m, s, i);
         }
     }
 }

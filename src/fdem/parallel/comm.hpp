@@ -32,9 +32,19 @@ public:
     /// Every process's bytes, concatenated in rank order, into all (resized; its capacity is
     /// kept, so a caller reusing it does not allocate once it is large enough).
     virtual void allgather_bytes(const std::vector<char>& mine, std::vector<char>& all) const = 0;
+    /// Point-to-point exchange with the processes that have something to send or receive:
+    /// send[send_displs[p] .. + send_counts[p]) goes to process p, which receives it into its
+    /// recv[recv_displs[me] .. + recv_counts[me]) (counts in doubles; the two sides' counts
+    /// must agree). Collective over the processes that exchange (every process calls it).
+    virtual void exchange(const double* send, const std::vector<int>& send_counts,
+                          const std::vector<int>& send_displs, double* recv,
+                          const std::vector<int>& recv_counts,
+                          const std::vector<int>& recv_displs) const = 0;
     /// Order-free reductions (D8.1): the same result for any process count.
     virtual double max(double x) const = 0;
     virtual double min(double x) const = 0;
+    /// n minima in one exchange, in place
+    virtual void min(double* x, int n) const = 0;
     virtual int64_t sum(int64_t n) const = 0;
     /// root's text on every process
     virtual void broadcast(std::string& text, int root) const = 0;
@@ -51,8 +61,11 @@ public:
     void allgather_bytes(const std::vector<char>& mine, std::vector<char>& all) const override {
         all.assign(mine.begin(), mine.end());
     }
+    void exchange(const double*, const std::vector<int>&, const std::vector<int>&, double*,
+                  const std::vector<int>&, const std::vector<int>&) const override {}
     double max(double x) const override { return x; }
     double min(double x) const override { return x; }
+    void min(double*, int) const override {}
     int64_t sum(int64_t n) const override { return n; }
     void broadcast(std::string&, int) const override {}
     void barrier() const override {}

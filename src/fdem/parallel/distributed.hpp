@@ -11,6 +11,8 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "contact/contact.hpp"
@@ -24,23 +26,84 @@ namespace fdem {
 
 // kNodeGroup (integrate/node_update.hpp): the unit of node ownership.
 
+/// Ghost nodes of a process (spec D6): the nodes it reads but does not own, whose x and v its
+/// owners send after every step instead of an all-gather of every node. They are the nodes of
+/// the element chunks it runs (D6.1, "owner computes"), of the loads (every process evaluates
+/// them) and, for every candidate pair of its targets, the target's nodes and every node of the
+/// contactor body (its sub-triangles, virtual nodes' parents and body box: D6.2), recomputed on
+/// every broad-phase rebuild. Other nodes' x and v are stale on this process between output
+/// steps; every reader of them (output, checkpoints, kicks, the broad phase, the lost-contact
+/// test) all-gathers first. Not active (x and v all-gathered every step, M2a) for models with
+/// joints (breaks rebuild the topology from every node) and for baseline A.
+struct GhostExchange {
+    bool active = false;
+    bool dirty = true;                          ///< recompute before the next step
+    std::vector<NodeId> static_need;            ///< element and load nodes not owned, ascending
+    std::vector<NodeId> recv_nodes;             ///< ghosts by owner, ascending within
+    std::vector<int> recv_counts, recv_displs;  ///< per process, in doubles (4 per node)
+    std::vector<NodeId> send_nodes;             ///< owned nodes others need, by process
+    std::vector<int> send_counts, send_displs;  ///< per process, in doubles (4 per node)
+    std::vector<double> send_buf, recv_buf;
+    std::vector<uint8_t> node_mark, body_mark;  ///< scratch of rebuild_ghosts()
+    std::vector<char> need_bytes, all_bytes;    ///< scratch of rebuild_ghosts()
+};
+
 struct StepPlan {
     int32_t rank = 0;
     int32_t procs = 1;
-    NodeId node_begin = 0;  ///< owned nodes [node_begin, node_end): whole groups
-    NodeId node_end = 0;
-    std::vector<int32_t> node_owner;            ///< per node
-    std::vector<int> node_counts, node_displs;  ///< per process, in doubles (2 per node)
+    std::vector<int32_t> node_owner;  ///< per node (whole groups of kNodeGroup ids)
+    /// the owned nodes as ranges [first, second) of whole groups, ascending
+    std::vector<std::pair<NodeId, NodeId>> own_runs;
+    /// the layout of the all-gather of node values: node ids by (owner, id); process p's part
+    /// is [node_displs[p], + node_counts[p]) / 2 (counts in doubles, 2 per node)
+    std::vector<NodeId> gather_order;
+    std::vector<int> node_counts, node_displs;
+    mutable std::vector<double> gather_buffer;  ///< 2 per node
     ElementSubset elements;                     ///< owner computes (element/cst.hpp)
     ContactShare contact;                       ///< the pairs of the owned targets
     std::vector<int32_t> bc_order;              ///< support slots by owner, then slot
     std::vector<int> bc_counts, bc_displs;      ///< per process, in doubles (2 per slot)
     mutable std::vector<double> bc_buffer;      ///< gather buffer (2 per slot)
+    mutable GhostExchange ghosts;               ///< neighbour exchange of x and v
+    mutable Real max_speed2 = 0;  ///< this step's skin speed max |v|^2 over all processes
+    bool viscous = false;         ///< a material has viscosity: the viscous power every step
 };
 
-/// The plan of process `rank` of `procs`: node groups split into contiguous ranges with about
-/// the same number of element triangles each (the node update is cheaper than the elements).
-StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs);
+/// Whether plan's process exchanges ghosts (GhostExchange::active) and the ghosts it always
+/// needs (element chunks, loads); make_step_plan() calls it.
+void init_ghosts(const Model& m, StepPlan& plan);
+
+/// check_state()'s failure for node i (integrate/step.cpp).
+[[noreturn]] void throw_not_finite(const Model& m, const State& s, NodeId i);
+
+/// The ghost lists of plan.rank from the current candidate pairs of s (after a broad-phase
+/// rebuild, a restore, or at the first step): each process tells the owners which of their
+/// nodes it needs. Collective.
+void rebuild_ghosts(const Model& m, const State& s, const StepPlan& plan, const Comm& comm);
+
+/// x and v of every ghost node from its owner (Comm::exchange). Collective.
+void exchange_ghosts(State& s, const StepPlan& plan, const Comm& comm);
+
+/// Every process holds the same replicated scalars (time, energies, contact counters): else a
+/// SimulationError on every process (a process read a stale value: a bug). Collective; run
+/// on output steps.
+void check_agreement(const State& s, const Comm& comm);
+
+/// check_state() of a distributed run: each process checks its own nodes; the first bad node
+/// id over all processes is reported by every process with the serial message. Collective.
+void check_state_distributed(const Model& m, const State& s, const StepPlan& plan,
+                             const Comm& comm);
+
+/// The node groups (kNodeGroup consecutive node ids), the unit of ownership: the centre of
+/// each group's reference positions and its weight (the triangles its nodes start, + 1), the
+/// input of a partitioner (parallel/mpi/rcb.hpp rcb_group_owners()).
+void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<double>& weight);
+
+/// The plan of process `rank` of `procs`. group_owner: the process of every node group (any
+/// assignment gives the same bits: spec D10); empty: contiguous ranges of groups with about
+/// the same number of element triangles each.
+StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
+                        std::span<const int32_t> group_owner = {});
 
 /// step(m, s) as one of plan.procs processes (integrate/step.cpp). Collective. Afterwards x, v,
 /// f_contact and the support reactions are the serial ones on every process; f is complete
@@ -48,6 +111,10 @@ StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs);
 /// everywhere after a step with s.need_energy (output steps): call gather_forces() before
 /// reading it on other steps.
 void step_distributed(const Model& m, State& s, const StepPlan& plan, const Comm& comm);
+
+/// Every process's values a[i] of the nodes it owns, on every process (an all-gather in the
+/// layout plan.gather_order). Collective.
+void gather_nodes(Vec2* a, const StepPlan& plan, const Comm& comm);
 
 /// Make s.f complete on every process (an all-gather of the owned parts). Collective.
 void gather_forces(State& s, const StepPlan& plan, const Comm& comm);

@@ -159,10 +159,16 @@ struct Simulation::Impl {
         }
     }
 
-    /// a distributed step leaves f complete only on output steps (step_distributed()): make it
-    /// complete before f is written on any other step. Collective.
+    /// a distributed step leaves f, and with ghosts x and v, complete only on output steps
+    /// (step_distributed()): make them complete before they are written on any other step.
+    /// Collective.
     void complete_forces() {
-        if (plan && !state.need_energy) gather_forces(state, *plan, *comm);
+        if (!plan || state.need_energy) return;
+        if (plan->ghosts.active) {
+            gather_nodes(state.x.data(), *plan, *comm);
+            gather_nodes(state.v.data(), *plan, *comm);
+        }
+        gather_forces(state, *plan, *comm);
     }
 
     /// a distributed frame as pieces (spec D13) rather than one file by process 0
@@ -270,12 +276,19 @@ struct Simulation::Impl {
         const bool last = s.step == total;
         const bool output_due = out && (s.time >= prog.next_output - 0.5 * s.dt || last);
         const bool checkpoint_due = ck && (s.time >= next_checkpoint - 0.5 * s.dt || last);
-        // a distributed run stops at the same step on every process: the first step after any
-        // process saw the request (SIGINT/SIGTERM reach each process at its own time)
+        // a distributed run stops at the same step on every process: the first 16th step after
+        // any process saw the request (SIGINT/SIGTERM reach each process at its own time)
         bool stop_asked = stop.load(std::memory_order_relaxed) != 0;
-        if (plan) stop_asked = comm->max(stop_asked ? 1.0 : 0.0) > 0;
+        if (plan) stop_asked = s.step % 16 == 0 && comm->max(stop_asked ? 1.0 : 0.0) > 0;
         // NaN/Inf check every 16 steps and before anything is written: files hold good states
-        if (s.step % 16 == 0 || output_due || checkpoint_due || stop_asked) check_state(m, s);
+        if (s.step % 16 == 0 || output_due || checkpoint_due || stop_asked) {
+            if (plan) {
+                check_state_distributed(m, s, *plan, *comm);  // (x, v of other nodes may be stale)
+                if (output_due || checkpoint_due) check_agreement(s, *comm);
+            } else {
+                check_state(m, s);
+            }
+        }
         if (output_due) write_output(last);
         if (checkpoint_due) {
             write_checkpoint_file(checkpoint_path());
@@ -289,7 +302,13 @@ struct Simulation::Impl {
     void write_failure() {
         failure = {};
         failure_error.clear();
-        if (plan) gather_forces(state, *plan, *comm);  // (the step's own failures did already)
+        if (plan) {  // every process fails at the same point (spec D9): gather the state
+            if (plan->ghosts.active) {
+                gather_nodes(state.x.data(), *plan, *comm);
+                gather_nodes(state.v.data(), *plan, *comm);
+            }
+            gather_forces(state, *plan, *comm);
+        }
         if (out_dir.empty() || !writes) return;
         const std::string path = (fs::path(out_dir) / "failure.vtu").string();
         try {
@@ -389,11 +408,12 @@ void Simulation::open_output(const std::string& dir, const std::string& origin) 
     I.run.output.dir = I.out_dir;
 }
 
-void Simulation::distribute(const Comm& comm) {
+void Simulation::distribute(const Comm& comm, const std::vector<int32_t>& group_owner) {
     Impl& I = *impl_;
     I.comm = &comm;
     I.writes = comm.rank() == 0;
-    I.plan = std::make_unique<StepPlan>(make_step_plan(I.model, comm.rank(), comm.size()));
+    I.plan =
+        std::make_unique<StepPlan>(make_step_plan(I.model, comm.rank(), comm.size(), group_owner));
     I.piece = make_vtu_piece(I.model, I.plan->node_owner, comm.rank());
 }
 
@@ -442,6 +462,10 @@ void Simulation::restore_checkpoint(const std::string& path) {
     I.restart_from = fs::absolute(fs::path(path)).parent_path().string();
     I.close_writers();
     I.next_checkpoint = I.state.time + I.checkpoint_every;
+    if (I.plan) {  // other candidates: new ghost lists and box lists
+        I.plan->ghosts.dirty = true;
+        I.plan->contact.boxes_valid = false;
+    }
 }
 
 int64_t Simulation::steps_to(Real t) const {

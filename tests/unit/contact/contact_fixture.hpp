@@ -71,7 +71,10 @@ struct ModelBuilder {
                   int32_t material = 0) {
         BodyOptions opt;
         opt.material = material;
-        opt.name = "b" + std::to_string(m.num_bodies());
+        // (append, not "b" + std::string&&: GCC 12 warns -Wrestrict on that inlined insert,
+        // a false positive, GCC bug 105329)
+        opt.name = "b";
+        opt.name += std::to_string(m.num_bodies());
         opt.fixed = fixed;
         opt.velocity = velocity;
         add_bodies(m, mesh, all_tris(mesh), opt);

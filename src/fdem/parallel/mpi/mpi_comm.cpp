@@ -98,6 +98,30 @@ void MpiComm::allgather_bytes(const std::vector<char>& mine, std::vector<char>& 
                    comm_);
 }
 
+void MpiComm::exchange(const double* send, const std::vector<int>& send_counts,
+                       const std::vector<int>& send_displs, double* recv,
+                       const std::vector<int>& recv_counts,
+                       const std::vector<int>& recv_displs) const {
+    constexpr int kTag = 15;
+    requests_.resize(2 * static_cast<size_t>(size_));
+    int n = 0;
+    for (int p = 0; p < size_; ++p) {
+        const size_t q = static_cast<size_t>(p);
+        if (p != rank_ && recv_counts[q] > 0) {
+            MPI_Irecv(recv + recv_displs[q], recv_counts[q], MPI_DOUBLE, p, kTag, comm_,
+                      &requests_[static_cast<size_t>(n++)]);
+        }
+    }
+    for (int p = 0; p < size_; ++p) {
+        const size_t q = static_cast<size_t>(p);
+        if (p != rank_ && send_counts[q] > 0) {
+            MPI_Isend(send + send_displs[q], send_counts[q], MPI_DOUBLE, p, kTag, comm_,
+                      &requests_[static_cast<size_t>(n++)]);
+        }
+    }
+    MPI_Waitall(n, requests_.data(), MPI_STATUSES_IGNORE);
+}
+
 double MpiComm::max(double x) const {
     MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, comm_);
     return x;
@@ -106,6 +130,10 @@ double MpiComm::max(double x) const {
 double MpiComm::min(double x) const {
     MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MIN, comm_);
     return x;
+}
+
+void MpiComm::min(double* x, int n) const {
+    MPI_Allreduce(MPI_IN_PLACE, x, n, MPI_DOUBLE, MPI_MIN, comm_);
 }
 
 int64_t MpiComm::sum(int64_t n) const {

@@ -37,8 +37,13 @@ public:
     void allgatherv(double* data, const std::vector<int>& counts,
                     const std::vector<int>& displs) const override;
     void allgather_bytes(const std::vector<char>& mine, std::vector<char>& all) const override;
+    void exchange(const double* send, const std::vector<int>& send_counts,
+                  const std::vector<int>& send_displs, double* recv,
+                  const std::vector<int>& recv_counts,
+                  const std::vector<int>& recv_displs) const override;
     double max(double x) const override;
     double min(double x) const override;
+    void min(double* x, int n) const override;
     int64_t sum(int64_t n) const override;
     void broadcast(std::string& text, int root) const override;
     void barrier() const override;
@@ -48,7 +53,8 @@ private:
     MPI_Comm comm_ = MPI_COMM_NULL;
     mutable std::vector<int64_t>
         sum_buf_;  ///< sum()'s words, sized on first use (no allocation per step)
-    mutable std::vector<int> counts_, displs_;  ///< allgather_bytes()'s, sized on first use
+    mutable std::vector<int> counts_, displs_;   ///< allgather_bytes()'s, sized on first use
+    mutable std::vector<MPI_Request> requests_;  ///< exchange()'s, sized on first use
     int rank_ = 0;
     int size_ = 1;
 };

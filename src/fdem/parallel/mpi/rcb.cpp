@@ -3,8 +3,11 @@
 
 #include <zoltan.h>
 
+#include <cstring>
 #include <stdexcept>
 #include <string>
+
+#include "parallel/distributed.hpp"
 
 namespace fdem {
 
@@ -106,6 +109,34 @@ std::vector<int> rcb_parts(const MpiComm& comm, std::span<const Vec2> x,
         if (p < 0) throw std::runtime_error("Zoltan: a point was given no part");
     }
     return part;
+}
+
+std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m) {
+    std::vector<Vec2> centre;
+    std::vector<double> weight;
+    node_group_points(m, centre, weight);
+    const size_t groups = centre.size();
+    const int P = comm.size(), r = comm.rank();
+    const size_t b = groups * static_cast<size_t>(r) / static_cast<size_t>(P);
+    const size_t e = groups * static_cast<size_t>(r + 1) / static_cast<size_t>(P);
+    std::vector<uint64_t> gid(e - b);
+    for (size_t g = b; g < e; ++g)
+        gid[g - b] = g;
+    const std::vector<int> part =
+        rcb_parts(comm, std::span<const Vec2>(centre).subspan(b, e - b),
+                  std::span<const double>(weight).subspan(b, e - b), gid, P);
+    std::vector<char> mine(part.size() * sizeof(int32_t)), all;
+    for (size_t k = 0; k < part.size(); ++k) {
+        const int32_t p = part[k];
+        std::memcpy(mine.data() + k * sizeof p, &p, sizeof p);
+    }
+    comm.allgather_bytes(mine, all);  // in rank order: the groups in order
+    std::vector<int32_t> owner(groups);
+    if (all.size() != groups * sizeof(int32_t)) {
+        throw std::runtime_error("rcb_group_owners: the gathered parts do not cover the groups");
+    }
+    std::memcpy(owner.data(), all.data(), all.size());
+    return owner;
 }
 
 }  // namespace fdem

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fdem/math.hpp"
+#include "fdem/model.hpp"
 #include "parallel/mpi/mpi_comm.hpp"
 
 namespace fdem {
@@ -18,5 +19,11 @@ namespace fdem {
 std::vector<int> rcb_parts(const MpiComm& comm, std::span<const Vec2> x,
                            std::span<const double> weight, std::span<const uint64_t> gid,
                            int parts);
+
+/// The process of every node group of m (distributed.hpp node_group_points(): centres and
+/// weights) by rcb_parts() with one part per process: each process hands Zoltan a contiguous
+/// share of the groups, and the parts are all-gathered, so every process returns the same
+/// vector. Collective.
+std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m);
 
 }  // namespace fdem
