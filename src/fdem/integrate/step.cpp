@@ -261,17 +261,16 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
 
     // 3. internal forces (parallel over the element schedule, deterministic)
     ElementPass pass;
+    ExactSum element_sums[2];  // (distributed: this process's strain energy and viscous power)
     if (plan == nullptr) {
         pass = add_internal_forces(m, s);
     } else {
         // owner computes (spec D7.1); energies as exact sums over the processes (theory §4.4)
         const ElementSubsetPass sp = add_internal_forces(m, s, plan->elements);
-        if (s.need_energy || plan->viscous) {  // (else both are zero on every process)
-            ExactSum sums[2] = {sp.strain_energy, sp.viscous_power};
-            comm->sum(sums, 2);
-            pass.strain_energy = sums[0].value();
-            pass.viscous_power = sums[1].value();
-        }
+        // strain energy and viscous power: summed over the processes with the node update's
+        // sums at the end of the step (one reduction)
+        element_sums[0] = sp.strain_energy;
+        element_sums[1] = sp.viscous_power;
         // the smallest det F over the processes, ties to the smallest chunk: the serial one;
         // with the skin trigger's max |v|^2 of contact (v is final for this step's contact
         // after the kicks) in one reduction (spec D8.3)
@@ -464,15 +463,14 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         // reactions; f_contact is applied alike everywhere; f (element forces of other nodes
         // were partial) only where it is read: output steps (step_distributed())
         // (with ghosts: x and v of the nodes each process reads, from their owners; every node
-        // on output steps, and after a step that lost a contact (its message names the node's
-        // position))
-        if (plan->ghosts.active && !s.need_energy && s.contact.lost_inside == 0) {
+        // after a step that lost a contact (its message names the node's position); output
+        // steps gather every node and f (Simulation))
+        if (plan->ghosts.active && s.contact.lost_inside == 0) {
             exchange_ghosts(s, *plan, *comm);
         } else {
             gather_nodes(s.x.data(), *plan, *comm);
             gather_nodes(s.v.data(), *plan, *comm);
         }
-        if (s.need_energy) gather_forces(s, *plan, *comm);
         if (!plan->bc_order.empty()) {
             double* buf = plan->bc_buffer.data();
             const size_t b = static_cast<size_t>(plan->bc_displs[plan->rank]) / 2;
@@ -487,13 +485,17 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
                 s.bc_reaction[static_cast<size_t>(plan->bc_order[j])] = {buf[2 * j],
                                                                          buf[2 * j + 1]};
         }
-        if (s.need_energy || mass_damped || !m.bcs.empty()) {  // (else all four are zero)
-            ExactSum sums[4] = {kinetic2, gravity_work, damping_power, support_work_sum};
-            comm->sum(sums, 4);
+        // the energy sums over the processes in one reduction (else all are zero everywhere)
+        if (s.need_energy || mass_damped || plan->viscous || !m.bcs.empty()) {
+            ExactSum sums[6] = {kinetic2,         gravity_work,    damping_power,
+                                support_work_sum, element_sums[0], element_sums[1]};
+            comm->sum(sums, 6);
             kinetic2 = sums[0];
             gravity_work = sums[1];
             damping_power = sums[2];
             support_work_sum = sums[3];
+            pass.strain_energy = sums[4].value();
+            pass.viscous_power = sums[5].value();
         }
     }
     const Real support_work = support_work_sum.value();

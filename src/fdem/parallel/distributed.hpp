@@ -105,11 +105,11 @@ void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<do
 StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
                         std::span<const int32_t> group_owner = {});
 
-/// step(m, s) as one of plan.procs processes (integrate/step.cpp). Collective. Afterwards x, v,
-/// f_contact and the support reactions are the serial ones on every process; f is complete
-/// only on the nodes the process owns, on the nodes of fixed bodies (no element forces), and
-/// everywhere after a step with s.need_energy (output steps): call gather_forces() before
-/// reading it on other steps.
+/// step(m, s) as one of plan.procs processes (integrate/step.cpp). Collective. Afterwards
+/// f_contact, the support reactions and the energies are the serial ones on every process; x
+/// and v on the nodes the process owns or reads (plan.ghosts; every node when ghosts are not
+/// active); f only on the nodes it owns and on the nodes of fixed bodies (no element forces):
+/// gather_nodes() and gather_forces() make them complete (Simulation does before output).
 void step_distributed(const Model& m, State& s, const StepPlan& plan, const Comm& comm);
 
 /// Every process's values a[i] of the nodes it owns, on every process (an all-gather in the

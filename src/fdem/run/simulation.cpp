@@ -159,11 +159,11 @@ struct Simulation::Impl {
         }
     }
 
-    /// a distributed step leaves f, and with ghosts x and v, complete only on output steps
-    /// (step_distributed()): make them complete before they are written on any other step.
+    /// a distributed step leaves f, and with ghosts x and v, complete only on the nodes a
+    /// process owns or reads (step_distributed()): gather them before they are written.
     /// Collective.
     void complete_forces() {
-        if (!plan || state.need_energy) return;
+        if (!plan) return;
         if (plan->ghosts.active) {
             gather_nodes(state.x.data(), *plan, *comm);
             gather_nodes(state.v.data(), *plan, *comm);
