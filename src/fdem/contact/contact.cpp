@@ -877,19 +877,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     // boxes of their contactors (listed again after every broad phase)
     const int32_t* owner = plan != nullptr ? plan->node_owner.data() : nullptr;
     const int32_t my_rank = plan != nullptr ? plan->rank : 0;
-    if (share != nullptr && !share->boxes_valid) {
-        std::vector<uint8_t>& mark = share->body_mark;
-        mark.assign(static_cast<size_t>(m.num_bodies()), 0);
-        for (int32_t pr = 0; pr < npairs; ++pr) {
-            if (owner[target_node(ct, cs.cand.node[pr])] == my_rank)
-                mark[static_cast<size_t>(cs.cand.body[pr])] = 1;
-        }
-        share->box_bodies.clear();
-        for (BodyId b = 0; b < m.num_bodies(); ++b) {
-            if (mark[static_cast<size_t>(b)]) share->box_bodies.push_back(b);
-        }
-        share->boxes_valid = true;
-    }
+    if (plan != nullptr) contactor_bodies(m, s, *plan);  // (lists them after a rebuild)
     const BodyId* box_list = share != nullptr ? share->box_bodies.data() : nullptr;
     const int32_t box_count =
         share != nullptr ? static_cast<int32_t>(share->box_bodies.size()) : m.num_bodies();
@@ -1106,6 +1094,25 @@ Real max_speed2(const Vec2* v, std::span<const std::pair<NodeId, NodeId>> runs) 
             v2s[0] = std::max(v2s[0], norm2(v[i]));
     }
     return std::max(std::max(v2s[0], v2s[1]), std::max(v2s[2], v2s[3]));
+}
+
+const std::vector<BodyId>& contactor_bodies(const Model& m, const State& s, const StepPlan& plan) {
+    const ContactShare& share = plan.contact;
+    if (share.boxes_valid) return share.box_bodies;
+    const ContactTopology& ct = s.topology;
+    const Candidates& cand = s.contact.cand;
+    std::vector<uint8_t>& mark = share.body_mark;
+    mark.assign(static_cast<size_t>(m.num_bodies()), 0);
+    for (size_t pr = 0; pr < cand.node.size(); ++pr) {
+        if (plan.node_owner[static_cast<size_t>(target_node(ct, cand.node[pr]))] == plan.rank)
+            mark[static_cast<size_t>(cand.body[pr])] = 1;
+    }
+    share.box_bodies.clear();
+    for (BodyId b = 0; b < m.num_bodies(); ++b) {
+        if (mark[static_cast<size_t>(b)]) share.box_bodies.push_back(b);
+    }
+    share.boxes_valid = true;
+    return share.box_bodies;
 }
 
 void add_contact_forces(const Model& m, State& s) {

@@ -61,6 +61,11 @@ Real max_speed2(const Vec2* v, std::span<const std::pair<NodeId, NodeId>> runs);
 /// rebuild all-gathers x and v first and rebuilds the ghost lists (plan.ghosts). Collective.
 void add_contact_forces(const Model& m, State& s, const StepPlan& plan, const Comm& comm);
 
+/// The contactor bodies of plan's process's candidate pairs (those of its targets), ascending:
+/// the only body boxes it computes and the bodies whose every node it reads (its ghosts). Listed
+/// once per candidate list (ContactShare::boxes_valid, cleared by a broad-phase rebuild).
+const std::vector<BodyId>& contactor_bodies(const Model& m, const State& s, const StepPlan& plan);
+
 /// Positions and velocities of the virtual contact nodes (s.contact.xv, vv) from s.x, s.v
 /// (spec §4.4-2). add_contact_forces() calls it first; exposed for tests and output.
 void update_virtual_nodes(const Model& m, State& s);

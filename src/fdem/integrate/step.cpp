@@ -176,11 +176,16 @@ void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2*
     }
 }
 
+// Is the next velocity kick due at this step (judged at mid-step, theory §5.2)?
+bool kick_due(const Model& m, const State& s) {
+    return s.next_kick < static_cast<int32_t>(m.kicks.size()) &&
+           m.kicks[static_cast<size_t>(s.next_kick)].time <= s.time + 0.5 * s.dt;
+}
+
 // Apply the velocity kicks whose time has come (theory §5.2). Their energy input is counted as
 // external work, so the balance still closes.
 void apply_kicks(const Model& m, State& s) {
-    while (s.next_kick < static_cast<int32_t>(m.kicks.size()) &&
-           m.kicks[static_cast<size_t>(s.next_kick)].time <= s.time + 0.5 * s.dt) {
+    while (kick_due(m, s)) {
         const VelocityKick& k = m.kicks[static_cast<size_t>(s.next_kick)];
         for (const Body& b : m.bodies) {
             if (b.group != k.group || b.fixed) continue;
@@ -237,9 +242,7 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
 
     // 1. kicks (a distributed run with ghosts: they read and write every node of their
     // bodies, so x and v are all-gathered first on the steps that have one)
-    if (plan != nullptr && plan->ghosts.active &&
-        s.next_kick < static_cast<int32_t>(m.kicks.size()) &&
-        m.kicks[static_cast<size_t>(s.next_kick)].time <= s.time + 0.5 * s.dt) {
+    if (plan != nullptr && plan->ghosts.active && kick_due(m, s)) {
         gather_nodes(x, *plan, *comm);
         gather_nodes(v, *plan, *comm);
     }
@@ -459,12 +462,10 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     }
 
     if (plan != nullptr) {
-        // every process holds the whole State again: the owned x and v and the supports'
-        // reactions; f_contact is applied alike everywhere; f (element forces of other nodes
-        // were partial) only where it is read: output steps (step_distributed())
-        // (with ghosts: x and v of the nodes each process reads, from their owners; every node
-        // after a step that lost a contact (its message names the node's position); output
-        // steps gather every node and f (Simulation))
+        // x and v of the nodes each process reads, from their owners (with ghosts; every node
+        // without, and after a step that lost a contact: its message names the node's
+        // position); the supports' reactions; f_contact is applied alike everywhere; f and the
+        // other nodes' x and v are gathered where they are written (Simulation, output steps)
         if (plan->ghosts.active && s.contact.lost_inside == 0) {
             exchange_ghosts(s, *plan, *comm);
         } else {
@@ -549,14 +550,11 @@ void gather_nodes(Vec2* a, const StepPlan& plan, const Comm& comm) {
         buf[2 * k + 1] = a[order[k]].y;
     }
     comm.allgatherv(buf, plan.node_counts, plan.node_displs);
-    const size_t n = plan.gather_order.size();
-    for (size_t k = 0; k < n; ++k) {
-        if (k == b) {
-            k = e - 1;  // (own values: already there)
-            continue;
-        }
+    // the other processes' parts (its own values are already there)
+    for (size_t k = 0; k < b; ++k)
         a[order[k]] = {buf[2 * k], buf[2 * k + 1]};
-    }
+    for (size_t k = e; k < plan.gather_order.size(); ++k)
+        a[order[k]] = {buf[2 * k], buf[2 * k + 1]};
 }
 
 void gather_forces(State& s, const StepPlan& plan, const Comm& comm) {
@@ -618,15 +616,23 @@ StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
             p.own_runs.emplace_back(b, e);
         }
     }
+    // the all-gather layout: node ids by (owner, id), one counting pass and one placing pass
     p.node_counts.assign(static_cast<size_t>(procs), 0);
     p.node_displs.assign(static_cast<size_t>(procs), 0);
-    for (int32_t r = 0; r < procs; ++r) {
-        p.node_displs[static_cast<size_t>(r)] = 2 * static_cast<int>(p.gather_order.size());
-        for (NodeId i = 0; i < nn; ++i) {
-            if (p.node_owner[static_cast<size_t>(i)] == r) p.gather_order.push_back(i);
-        }
-        p.node_counts[static_cast<size_t>(r)] =
-            2 * static_cast<int>(p.gather_order.size()) - p.node_displs[static_cast<size_t>(r)];
+    for (NodeId i = 0; i < nn; ++i)
+        p.node_counts[static_cast<size_t>(p.node_owner[static_cast<size_t>(i)])] += 2;
+    for (int32_t r = 1; r < procs; ++r) {
+        p.node_displs[static_cast<size_t>(r)] =
+            p.node_displs[static_cast<size_t>(r) - 1] + p.node_counts[static_cast<size_t>(r) - 1];
+    }
+    p.gather_order.resize(static_cast<size_t>(nn));
+    {
+        std::vector<size_t> at(static_cast<size_t>(procs));  // next place per owner, in nodes
+        for (int32_t r = 0; r < procs; ++r)
+            at[static_cast<size_t>(r)] =
+                static_cast<size_t>(p.node_displs[static_cast<size_t>(r)]) / 2;
+        for (NodeId i = 0; i < nn; ++i)
+            p.gather_order[at[static_cast<size_t>(p.node_owner[static_cast<size_t>(i)])]++] = i;
     }
     p.gather_buffer.assign(2 * static_cast<size_t>(nn), 0.0);
     p.elements = element_subset(m, p.node_owner, rank);

@@ -44,8 +44,8 @@ struct GhostExchange {
     std::vector<NodeId> send_nodes;             ///< owned nodes others need, by process
     std::vector<int> send_counts, send_displs;  ///< per process, in doubles (4 per node)
     std::vector<double> send_buf, recv_buf;
-    std::vector<uint8_t> node_mark, body_mark;  ///< scratch of rebuild_ghosts()
-    std::vector<char> need_bytes, all_bytes;    ///< scratch of rebuild_ghosts()
+    std::vector<uint8_t> node_mark;           ///< scratch of rebuild_ghosts()
+    std::vector<char> need_bytes, all_bytes;  ///< scratch of rebuild_ghosts()
 };
 
 struct StepPlan {
@@ -100,8 +100,8 @@ void check_state_distributed(const Model& m, const State& s, const StepPlan& pla
 void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<double>& weight);
 
 /// The plan of process `rank` of `procs`. group_owner: the process of every node group (any
-/// assignment gives the same bits: spec D10); empty: contiguous ranges of groups with about
-/// the same number of element triangles each.
+/// assignment gives the same bits: spec D10); empty: contiguous ranges of about the same
+/// number of groups each.
 StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
                         std::span<const int32_t> group_owner = {});
 

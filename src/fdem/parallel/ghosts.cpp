@@ -52,7 +52,6 @@ void init_ghosts(const Model& m, StepPlan& p) {
     if (!g.active) return;
     g.static_need = static_need(m, p);
     g.node_mark.assign(static_cast<size_t>(m.num_nodes()), 0);
-    g.body_mark.assign(static_cast<size_t>(m.num_bodies()), 0);
     g.recv_counts.assign(static_cast<size_t>(p.procs), 0);
     g.recv_displs.assign(static_cast<size_t>(p.procs), 0);
     g.send_counts.assign(static_cast<size_t>(p.procs), 0);
@@ -66,7 +65,6 @@ void rebuild_ghosts(const Model& m, const State& s, const StepPlan& p, const Com
     const int32_t* owner = p.node_owner.data();
     std::vector<uint8_t>& mark = g.node_mark;
     std::fill(mark.begin(), mark.end(), uint8_t{0});
-    std::fill(g.body_mark.begin(), g.body_mark.end(), uint8_t{0});
     for (const NodeId i : g.static_need)
         mark[static_cast<size_t>(i)] = 1;
     // the candidate pairs of this process's targets (spec D6.2): the target's nodes, and every
@@ -74,15 +72,12 @@ void rebuild_ghosts(const Model& m, const State& s, const StepPlan& p, const Com
     const size_t npairs = cs.cand.node.size();
     for (size_t pr = 0; pr < npairs; ++pr) {
         const NodeId j = cs.cand.node[pr];
-        if (owner[target_node(ct, j)] != p.rank) continue;
-        if (j >= ct.num_real_nodes) {  // an edge target: both end nodes
-            const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
-            mark[static_cast<size_t>(e[1])] = 1;
-        }
-        g.body_mark[static_cast<size_t>(cs.cand.body[pr])] = 1;
+        if (j < ct.num_real_nodes || owner[target_node(ct, j)] != p.rank) continue;
+        // an edge target: its second end node too
+        mark[static_cast<size_t>(
+            ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)][1])] = 1;
     }
-    for (BodyId b = 0; b < m.num_bodies(); ++b) {
-        if (!g.body_mark[static_cast<size_t>(b)]) continue;
+    for (const BodyId b : contactor_bodies(m, s, p)) {
         const Body& body = m.bodies[static_cast<size_t>(b)];
         std::fill(mark.begin() + body.node_begin, mark.begin() + body.node_end, uint8_t{1});
     }

@@ -162,7 +162,7 @@ struct Simulation::Impl {
     /// a distributed step leaves f, and with ghosts x and v, complete only on the nodes a
     /// process owns or reads (step_distributed()): gather them before they are written.
     /// Collective.
-    void complete_forces() {
+    void complete_state() {
         if (!plan) return;
         if (plan->ghosts.active) {
             gather_nodes(state.x.data(), *plan, *comm);
@@ -194,7 +194,7 @@ struct Simulation::Impl {
     }
 
     void write_output(bool last) {
-        complete_forces();
+        complete_state();
         if (frame_in_pieces()) write_piece();
         if (!writes) {  // another process writes; keep the same bookkeeping
             ++prog.frame;
@@ -236,7 +236,7 @@ struct Simulation::Impl {
     }
 
     void write_checkpoint_file(const std::string& path) {
-        complete_forces();
+        complete_state();
         if (!writes) return;
         write_checkpoint(path, model, state, prog);
         last_checkpoint = {path, state.step, state.time};
@@ -302,13 +302,7 @@ struct Simulation::Impl {
     void write_failure() {
         failure = {};
         failure_error.clear();
-        if (plan) {  // every process fails at the same point (spec D9): gather the state
-            if (plan->ghosts.active) {
-                gather_nodes(state.x.data(), *plan, *comm);
-                gather_nodes(state.v.data(), *plan, *comm);
-            }
-            gather_forces(state, *plan, *comm);
-        }
+        complete_state();  // (every process fails at the same point: spec D9)
         if (out_dir.empty() || !writes) return;
         const std::string path = (fs::path(out_dir) / "failure.vtu").string();
         try {
