@@ -3,6 +3,8 @@
 //                     [--checkpoint-every T] [--restart FILE] [--print-hash]
 //                     [--progress-every S] [--partition rcb|ids|random]
 //   fdem check SCENARIO
+//   fdem decompose SCENARIO --parts P[,P...] [--partition rcb|ids|random] [--end-time T]
+//                           [--csv FILE]
 // Exit codes: 0 success, 1 simulation failure, 2 usage or input error (including a checkpoint
 // that does not belong to the scenario), 130 / 143 stopped by SIGINT / SIGTERM after writing a
 // checkpoint (128 + signal number, the shell convention).
@@ -35,6 +37,7 @@
 #include "fdem/fdem.hpp"
 #include "fracture/joints.hpp"
 #include "integrate/node_update.hpp"
+#include "parallel/decompose.hpp"
 
 namespace {
 
@@ -365,17 +368,8 @@ int run(const RunOptions& opt) {
     if (g_comm != nullptr) {  // before open_output: process 0 writes
         // the process of each node group (docs/parallel.md): any assignment gives the same bits
         std::vector<int32_t> owner;
-        const int32_t groups = (m.num_nodes() + fdem::kNodeGroup - 1) / fdem::kNodeGroup;
         if (opt.partition == "random") {  // a test of partition independence (spec T3)
-            owner.resize(static_cast<size_t>(groups));
-            uint64_t h = 0x9e3779b97f4a7c15ull;
-            for (int32_t g = 0; g < groups; ++g) {
-                h ^= h >> 31;
-                h *= 0xbf58476d1ce4e5b9ull;
-                h ^= h >> 27;
-                owner[static_cast<size_t>(g)] =
-                    static_cast<int32_t>(h % static_cast<uint64_t>(g_comm->size()));
-            }
+            owner = fdem::group_owners(m, "random", g_comm->size());
         } else if (opt.partition == "rcb") {
 #ifdef FDEM_HAVE_MPI
             owner = fdem::rcb_group_owners(dynamic_cast<const fdem::MpiComm&>(*g_comm), m);
@@ -467,6 +461,21 @@ int run(const RunOptions& opt) {
     }
     if (tty) fmt::print(stderr, "\n");
     const double wall = std::chrono::duration<double>(clock::now() - t0).count();
+    if (g_comm != nullptr) {
+        // what each process owned and exchanged per step at the end (the counts `fdem
+        // decompose` gives without MPI; docs/parallel.md)
+        const std::string csv = sim.partition_csv();
+        if (g_comm->rank() == 0) {
+            const std::string path = (std::filesystem::path(out) / "partition.csv").string();
+            std::FILE* fp = std::fopen(path.c_str(), "w");
+            if (fp == nullptr || std::fputs(csv.c_str(), fp) < 0 || std::fclose(fp) != 0) {
+                fmt::print(stderr, "warning: cannot write {}: {}\n", path, std::strerror(errno));
+            } else if (!opt.quiet) {
+                fmt::print("processes  {} ({} partition); per process and step: {}\n",
+                           g_comm->size(), opt.partition, path);
+            }
+        }
+    }
     const uint64_t hash = sim.state_hash();
     if (!opt.quiet) {
         const double steps = static_cast<double>(s.step - start_step);
@@ -498,6 +507,110 @@ int run(const RunOptions& opt) {
                    s.time, hash);
     } else if (opt.print_hash) {
         fmt::print("hash {:016x}\n", hash);
+    }
+    return 0;
+}
+
+struct DecomposeOptions {
+    std::string scenario;
+    std::vector<int> parts;
+    std::string partition = "rcb";
+    double end_time = -1;  ///< < 0: one step
+    std::string csv;
+    int threads = 0;
+};
+
+// `fdem decompose`: the counts of a distributed run with P processes (docs/parallel.md "fdem
+// decompose"), from one process: the scenario is run serially to the end time (default: one
+// step, so the candidate pairs of t = 0 exist), then every part's plan and ghost lists are made
+// as each process of `mpirun -np P fdem run` makes its own (parallel/decompose.hpp).
+int decompose_command(const DecomposeOptions& opt, const fdem::Comm* rcb_comm) {
+    using clock = std::chrono::steady_clock;
+    fdem::Scenario sc = fdem::load_scenario(opt.scenario);
+    print_warnings(sc);
+    if (opt.threads > 0) omp_set_num_threads(opt.threads);
+    if (opt.partition == "rcb" && rcb_comm == nullptr) {
+        throw fdem::InputError({}, "--partition",
+                               "rcb needs Zoltan, which this fdem was built without (build with "
+                               "-DFDEM_MPI=ON, docs/parallel.md); use --partition ids or random");
+    }
+    const double end = opt.end_time;
+    fdem::Simulation sim(std::move(sc));
+    const fdem::Model& m = sim.model();
+    const fdem::State& s = sim.state();
+    const auto t0 = clock::now();
+    if (end > 0) {
+        sim.run(end);
+    } else {
+        sim.step();
+    }
+    const double t_run = std::chrono::duration<double>(clock::now() - t0).count();
+    fmt::print(
+        "model      {} nodes, {} triangles, {} bodies; state at step {} (t = {:.6g} s, "
+        "{:.2f} s to get there)\n",
+        m.num_nodes(), m.num_tris(), m.num_bodies(), s.step, s.time, t_run);
+    const fdem::Simulation::ContactCounts cc = sim.contact_counts();
+    fmt::print("contact    {} candidate pairs, {} in contact\n", cc.candidates, cc.in_contact);
+    std::string csv;
+    for (const int P : opt.parts) {
+        const auto t1 = clock::now();
+        std::vector<int32_t> owner;
+        if (opt.partition == "rcb") {
+#ifdef FDEM_HAVE_MPI
+            owner = fdem::rcb_group_owners(dynamic_cast<const fdem::MpiComm&>(*rcb_comm), m, P);
+#endif
+        } else {
+            owner = fdem::group_owners(m, opt.partition, P);
+        }
+        const std::vector<fdem::PartCounts> parts = fdem::decompose(m, s, owner, P);
+        const double t_dec = std::chrono::duration<double>(clock::now() - t1).count();
+        std::string rows = fdem::partition_csv(parts);
+        csv += csv.empty() ? rows : rows.substr(rows.find('\n') + 1);
+        // the summary: mean and max over the parts, and the step's totals
+        auto stat = [&](auto field) {
+            double sum = 0, mx = 0;
+            for (const fdem::PartCounts& c : parts) {
+                const double v = static_cast<double>(field(c));
+                sum += v;
+                mx = std::max(mx, v);
+            }
+            return std::pair<double, double>{sum / static_cast<double>(parts.size()), mx};
+        };
+        const auto [n_mean, n_max] = stat([](const fdem::PartCounts& c) { return c.nodes; });
+        const auto [tr_mean, tr_max] = stat([](const fdem::PartCounts& c) { return c.tris_run; });
+        const auto [g_mean, g_max] = stat([](const fdem::PartCounts& c) { return c.ghost_nodes; });
+        const auto [msg_mean, msg_max] =
+            stat([](const fdem::PartCounts& c) { return c.recv_from + c.send_to; });
+        const auto [b_mean, b_max] = stat([](const fdem::PartCounts& c) {
+            return fdem::ghost_bytes_in(c) + fdem::ghost_bytes_out(c);
+        });
+        const auto [p_mean, p_max] =
+            stat([](const fdem::PartCounts& c) { return c.candidate_pairs; });
+        int64_t gathered = 0, records = 0, counted = 0;
+        for (const fdem::PartCounts& c : parts) {
+            gathered += fdem::gathered_bytes(c);
+            records += c.contact_records;
+            counted += c.tris_counted;  // the triangles of movable bodies, each counted once
+        }
+        const double T = static_cast<double>(counted);
+        fmt::print(
+            "parts {:>5} ({}, {:.1f} s): nodes per part {:.0f} mean / {:.0f} max; triangles run "
+            "{:.0f} / {:.0f} ({:+.1f} % redundant); ghost nodes {:.0f} / {:.0f}; messages {:.1f} "
+            "/ {:.0f}; point-to-point bytes in + out {:.0f} / {:.0f}; candidate pairs {:.0f} / "
+            "{:.0f}; all-gathered per step {} records, {} bytes to every part\n",
+            P, opt.partition, t_dec, n_mean, n_max, tr_mean, tr_max,
+            T > 0 ? 100.0 * (tr_mean * P / T - 1.0) : 0.0, g_mean, g_max, msg_mean, msg_max, b_mean,
+            b_max, p_mean, p_max, records, gathered);
+    }
+    if (!opt.csv.empty()) {
+        std::FILE* fp = std::fopen(opt.csv.c_str(), "w");
+        if (fp == nullptr || std::fputs(csv.c_str(), fp) < 0 || std::fclose(fp) != 0) {
+            throw fdem::InputError({}, "--csv",
+                                   fmt::format("cannot write \"{}\": {}; expected a writable "
+                                               "file path",
+                                               opt.csv, std::strerror(errno)));
+        }
+        fmt::print("csv        {} (one row per part)\n", opt.csv);
     }
     return 0;
 }
@@ -572,6 +685,27 @@ int main(int argc, char** argv) {
     auto* check_cmd = app.add_subcommand("check", "validate a scenario and print a model summary");
     check_cmd->add_option("scenario", check_path, "scenario file (TOML)")->required();
 
+    DecomposeOptions dop;
+    auto* dec_cmd = app.add_subcommand(
+        "decompose",
+        "what each of P processes would own and exchange per step (one process, no mpirun)");
+    dec_cmd->add_option("scenario", dop.scenario, "scenario file (TOML)")->required();
+    dec_cmd->add_option("--parts", dop.parts, "process counts P, e.g. 2,4,64,1024")
+        ->required()
+        ->delimiter(',')
+        ->check(CLI::Range(1, 1 << 20));
+    dec_cmd
+        ->add_option("--partition", dop.partition,
+                     "rcb (Zoltan, the default of fdem run), ids or random, as fdem run")
+        ->check(CLI::IsMember({"rcb", "ids", "random"}));
+    dec_cmd
+        ->add_option("--end-time", dop.end_time,
+                     "run serially to this time first [s] (default: one step)")
+        ->check(kFinitePositive);
+    dec_cmd->add_option("--csv", dop.csv, "write one row per part (the columns of partition.csv)");
+    dec_cmd->add_option("--threads", dop.threads, "OpenMP threads (default: all cores)")
+        ->check(CLI::Range(1, 1024));
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -615,6 +749,17 @@ int main(int argc, char** argv) {
                                 procs));
             }
             return run(ro);
+        }
+        if (*dec_cmd) {
+            const fdem::Comm* rcb_comm = nullptr;
+#ifdef FDEM_HAVE_MPI
+            if (dop.partition == "rcb") {  // Zoltan needs MPI: a one-process world
+                static fdem::MpiSession session(&argc, &argv);
+                static const fdem::MpiComm comm;
+                rcb_comm = &comm;
+            }
+#endif
+            return decompose_command(dop, rcb_comm);
         }
         if (*check_cmd) {
             const fdem::Scenario sc = fdem::load_scenario(check_path);

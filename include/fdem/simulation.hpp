@@ -166,6 +166,11 @@ public:
         bool triangle_couples = false;  ///< legacy-triangle: the counts are triangle couples
     };
     ContactCounts contact_counts() const;
+    /// A distributed run (distribute()): what each process owns, computes and exchanges per
+    /// step at the current candidate pairs, as the text of partition.csv (one row per process,
+    /// parallel/decompose.hpp partition_csv(); `fdem decompose` writes the same rows without
+    /// MPI). Collective; "" for a one-process run.
+    std::string partition_csv() const;
     /// First warning of the run-time checks ("" = none) and how many steps warned.
     const std::string& first_warning() const;
     int64_t warnings() const;

@@ -120,3 +120,27 @@ add_test(NAME mpi.signal_to_one_process_stops_all
                  ${ex}/03_contact_slide/scenario.toml ${mpi_out}/signal 0.4)
 set_tests_properties(mpi.signal_to_one_process_stops_all PROPERTIES LABELS mpi TIMEOUT 120
                      PASS_REGULAR_EXPRESSION "OK: a signal to one process stops all")
+# T8: `fdem decompose --parts P` (one process) counts what P processes own, run and exchange per
+# step: its rows equal the partition.csv of the run, for Zoltan's RCB (numbered alike on one and
+# on P processes), contiguous ids and random owners, with contact records (04 to 0.3 ms), support
+# slots (kick_load) and without ghost lists (08: joints, x and v all-gathered)
+foreach(case "04_rcb:${ex}/04_particles/scenario.toml:2 3 4:rcb:3e-4"
+        "04_random:${ex}/04_particles/scenario.toml:4:random:3e-4"
+        "04_ids:${ex}/04_particles/scenario.toml:3:ids:3e-4"
+        "kick_load:${mpi_dir}/kick_load.toml:3:rcb:2e-4"
+        "08_joints:${ex}/08_brazilian_disc/scenario.toml:2:rcb:2e-6")
+  string(REPLACE ":" ";" case "${case}")
+  list(GET case 0 name)
+  list(GET case 1 scenario)
+  list(GET case 2 nps)
+  list(GET case 3 how)
+  list(GET case 4 end)
+  add_test(NAME mpi.decompose_matches_run.${name}
+           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                   ${mpi_dir}/decompose_matches_run.sh $<TARGET_FILE:fdem_cli>
+                   ${MPIEXEC_EXECUTABLE} ${scenario} ${mpi_out}/decompose_${name} "${nps}" ${how}
+                   ${end})
+  set_tests_properties(mpi.decompose_matches_run.${name} PROPERTIES LABELS mpi TIMEOUT 300
+                       PROCESSORS 2 PASS_REGULAR_EXPRESSION
+                       "OK: fdem decompose counts what the processes exchanged")
+endforeach()

@@ -940,7 +940,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     if (share != nullptr) {
         // records (pair index, result), each process's in pair order; the gathered ones are
         // put in pair order by share->order
-        constexpr size_t kRec = sizeof(int32_t) + sizeof(PairResult);
+        constexpr size_t kRec = kContactRecordBytes;
         static_assert(std::is_trivially_copyable_v<PairResult>);
         std::vector<char>& send = share->send;
         size_t n_mine = 0;

@@ -35,6 +35,10 @@ void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> 
 /// update pair history, contact energy and contact dissipation in s.energy / s.contact.
 void add_contact_forces(const Model& m, State& s);
 
+/// Bytes of one pair-in-contact record of a distributed run (pair index, PairResult): every
+/// process all-gathers those of its targets every step (add_contact_forces() with a plan).
+inline constexpr size_t kContactRecordBytes = sizeof(int32_t) + sizeof(PairResult);
+
 /// Scratch of a process's share of the narrow phase in a distributed run (StepPlan::contact).
 struct ContactShare {
     mutable std::vector<char> send, recv;  ///< the exchange of the pairs in contact (grow only)

@@ -577,11 +577,50 @@ void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<do
         weight[static_cast<size_t>(t[0] / kNodeGroup)] += 1.0;
 }
 
-StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
-                        std::span<const int32_t> group_owner) {
+StepPlan make_part_plan(const Model& m, int32_t rank, int32_t procs,
+                        std::vector<int32_t> node_owner) {
     StepPlan p;
     p.rank = rank;
     p.procs = procs;
+    const NodeId nn = m.num_nodes();
+    if (node_owner.size() != static_cast<size_t>(nn))
+        throw std::invalid_argument("make_part_plan: node_owner must have one entry per node");
+    p.node_owner = std::move(node_owner);
+    for (NodeId b = 0; b < nn; b += kNodeGroup) {
+        if (p.node_owner[static_cast<size_t>(b)] != rank) continue;
+        const NodeId e = std::min(nn, b + kNodeGroup);
+        if (!p.own_runs.empty() && p.own_runs.back().second == b) {
+            p.own_runs.back().second = e;
+        } else {
+            p.own_runs.emplace_back(b, e);
+        }
+    }
+    p.elements = element_subset(m, p.node_owner, rank);
+    init_ghosts(m, p);
+    for (const Material& mt : m.materials)
+        p.viscous = p.viscous || mt.viscosity > 0 || mt.damping_ratio > 0;
+    // support slots (the order of Model::bcs and their nodes) grouped by the owner of the node
+    std::vector<std::vector<int32_t>> by_owner(static_cast<size_t>(procs));
+    int32_t slot = 0;
+    for (const BoundaryCondition& bc : m.bcs) {
+        for (NodeId i : bc.nodes)
+            by_owner[static_cast<size_t>(p.node_owner[static_cast<size_t>(i)])].push_back(slot++);
+    }
+    p.bc_counts.assign(static_cast<size_t>(procs), 0);
+    p.bc_displs.assign(static_cast<size_t>(procs), 0);
+    for (int32_t r = 0; r < procs; ++r) {
+        p.bc_displs[static_cast<size_t>(r)] = 2 * static_cast<int>(p.bc_order.size());
+        p.bc_counts[static_cast<size_t>(r)] =
+            2 * static_cast<int>(by_owner[static_cast<size_t>(r)].size());
+        p.bc_order.insert(p.bc_order.end(), by_owner[static_cast<size_t>(r)].begin(),
+                          by_owner[static_cast<size_t>(r)].end());
+    }
+    p.bc_buffer.assign(2 * p.bc_order.size(), 0.0);
+    return p;
+}
+
+StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
+                        std::span<const int32_t> group_owner) {
     const NodeId nn = m.num_nodes();
     const NodeId groups = (nn + kNodeGroup - 1) / kNodeGroup;
     std::vector<int32_t> owner_of_group(static_cast<size_t>(groups), 0);
@@ -604,18 +643,10 @@ StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
                 owner_of_group[static_cast<size_t>(g)] = r;
         }
     }
-    p.node_owner.assign(static_cast<size_t>(nn), 0);
+    std::vector<int32_t> node_owner(static_cast<size_t>(nn), 0);
     for (NodeId i = 0; i < nn; ++i)
-        p.node_owner[static_cast<size_t>(i)] = owner_of_group[static_cast<size_t>(i / kNodeGroup)];
-    for (NodeId g = 0; g < groups; ++g) {
-        if (owner_of_group[static_cast<size_t>(g)] != rank) continue;
-        const NodeId b = g * kNodeGroup, e = std::min(nn, b + kNodeGroup);
-        if (!p.own_runs.empty() && p.own_runs.back().second == b) {
-            p.own_runs.back().second = e;
-        } else {
-            p.own_runs.emplace_back(b, e);
-        }
-    }
+        node_owner[static_cast<size_t>(i)] = owner_of_group[static_cast<size_t>(i / kNodeGroup)];
+    StepPlan p = make_part_plan(m, rank, procs, std::move(node_owner));
     // the all-gather layout: node ids by (owner, id), one counting pass and one placing pass
     p.node_counts.assign(static_cast<size_t>(procs), 0);
     p.node_displs.assign(static_cast<size_t>(procs), 0);
@@ -635,27 +666,6 @@ StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
             p.gather_order[at[static_cast<size_t>(p.node_owner[static_cast<size_t>(i)])]++] = i;
     }
     p.gather_buffer.assign(2 * static_cast<size_t>(nn), 0.0);
-    p.elements = element_subset(m, p.node_owner, rank);
-    init_ghosts(m, p);
-    for (const Material& mt : m.materials)
-        p.viscous = p.viscous || mt.viscosity > 0 || mt.damping_ratio > 0;
-    // support slots (the order of Model::bcs and their nodes) grouped by the owner of the node
-    std::vector<std::vector<int32_t>> by_owner(static_cast<size_t>(procs));
-    int32_t slot = 0;
-    for (const BoundaryCondition& bc : m.bcs) {
-        for (NodeId i : bc.nodes)
-            by_owner[static_cast<size_t>(p.node_owner[static_cast<size_t>(i)])].push_back(slot++);
-    }
-    p.bc_counts.assign(static_cast<size_t>(procs), 0);
-    p.bc_displs.assign(static_cast<size_t>(procs), 0);
-    for (int32_t r = 0; r < procs; ++r) {
-        p.bc_displs[static_cast<size_t>(r)] = 2 * static_cast<int>(p.bc_order.size());
-        p.bc_counts[static_cast<size_t>(r)] =
-            2 * static_cast<int>(by_owner[static_cast<size_t>(r)].size());
-        p.bc_order.insert(p.bc_order.end(), by_owner[static_cast<size_t>(r)].begin(),
-                          by_owner[static_cast<size_t>(r)].end());
-    }
-    p.bc_buffer.assign(2 * p.bc_order.size(), 0.0);
     return p;
 }
 

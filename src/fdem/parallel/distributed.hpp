@@ -81,6 +81,11 @@ void init_ghosts(const Model& m, StepPlan& plan);
 /// nodes it needs. Collective.
 void rebuild_ghosts(const Model& m, const State& s, const StepPlan& plan, const Comm& comm);
 
+/// The receive half of rebuild_ghosts(), local to plan's process: plan.ghosts.recv_nodes,
+/// recv_counts and recv_displs from the current candidate pairs of s. `fdem decompose` calls it
+/// for every part in one process (parallel/decompose.hpp).
+void ghost_receive_lists(const Model& m, const State& s, const StepPlan& plan);
+
 /// x and v of every ghost node from its owner (Comm::exchange). Collective.
 void exchange_ghosts(State& s, const StepPlan& plan, const Comm& comm);
 
@@ -104,6 +109,13 @@ void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<do
 /// number of groups each.
 StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
                         std::span<const int32_t> group_owner = {});
+
+/// The part of make_step_plan() that does not need the all-gather layout (no gather_order,
+/// node_counts, gather_buffer): the owned runs, the element subset, the ghosts' static need
+/// and the support slots of process `rank`, for node_owner[n] in [0, procs) constant on every
+/// node group. `fdem decompose` makes one per part (parallel/decompose.hpp).
+StepPlan make_part_plan(const Model& m, int32_t rank, int32_t procs,
+                        std::vector<int32_t> node_owner);
 
 /// step(m, s) as one of plan.procs processes (integrate/step.cpp). Collective. Afterwards
 /// f_contact, the support reactions and the energies are the serial ones on every process; x

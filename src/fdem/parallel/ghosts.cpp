@@ -58,7 +58,7 @@ void init_ghosts(const Model& m, StepPlan& p) {
     g.send_displs.assign(static_cast<size_t>(p.procs), 0);
 }
 
-void rebuild_ghosts(const Model& m, const State& s, const StepPlan& p, const Comm& comm) {
+void ghost_receive_lists(const Model& m, const State& s, const StepPlan& p) {
     GhostExchange& g = p.ghosts;
     const ContactTopology& ct = s.topology;
     const ContactState& cs = s.contact;
@@ -81,8 +81,7 @@ void rebuild_ghosts(const Model& m, const State& s, const StepPlan& p, const Com
         const Body& body = m.bodies[static_cast<size_t>(b)];
         std::fill(mark.begin() + body.node_begin, mark.begin() + body.node_end, uint8_t{1});
     }
-    // the ghosts, by owner then id; their count per owner; the list of all of them, prefixed
-    // by its length, to every process, which picks the nodes it owns: its send list
+    // the ghosts, by owner then id, and their count per owner (in doubles, 4 per node)
     const int P = p.procs;
     std::fill(g.recv_counts.begin(), g.recv_counts.end(), 0);
     for (NodeId i = 0; i < m.num_nodes(); ++i) {
@@ -103,7 +102,17 @@ void rebuild_ghosts(const Model& m, const State& s, const StepPlan& p, const Com
             if (mark[static_cast<size_t>(i)] && owner[i] != p.rank)
                 g.recv_nodes[static_cast<size_t>(at[static_cast<size_t>(owner[i])]++)] = i;
         }
+        std::fill(at.begin(), at.end(), 0);
     }
+}
+
+void rebuild_ghosts(const Model& m, const State& s, const StepPlan& p, const Comm& comm) {
+    GhostExchange& g = p.ghosts;
+    const int32_t* owner = p.node_owner.data();
+    const int P = p.procs;
+    // the list of all ghosts, prefixed by its length, to every process, which picks the nodes
+    // it owns: its send list
+    ghost_receive_lists(m, s, p);
     const int32_t n = static_cast<int32_t>(g.recv_nodes.size());
     g.need_bytes.resize(sizeof(int32_t) * (1 + static_cast<size_t>(n)));
     std::memcpy(g.need_bytes.data(), &n, sizeof n);

@@ -8,7 +8,9 @@
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -20,6 +22,7 @@
 #include "integrate/run_checks.hpp"
 #include "io/checkpoint.hpp"
 #include "io/fracture_output.hpp"
+#include "parallel/decompose.hpp"
 #include "parallel/distributed.hpp"
 
 namespace fdem {
@@ -525,6 +528,19 @@ void Simulation::check() const {
 const EnergyMonitor& Simulation::energy_monitor() const {
     return impl_->prog.energy;
 }
+std::string Simulation::partition_csv() const {
+    const Impl& I = *impl_;
+    if (!I.plan) return "";
+    static_assert(std::is_trivially_copyable_v<PartCounts>);
+    const PartCounts mine = part_counts(I.model, I.state, *I.plan);
+    std::vector<char> bytes(sizeof mine), all;
+    std::memcpy(bytes.data(), &mine, sizeof mine);
+    I.comm->allgather_bytes(bytes, all);
+    std::vector<PartCounts> parts(all.size() / sizeof mine);
+    std::memcpy(parts.data(), all.data(), parts.size() * sizeof mine);
+    return fdem::partition_csv(parts);
+}
+
 Simulation::ContactCounts Simulation::contact_counts() const {
     const ContactModel& cm = impl_->model.contact;
     const ContactState& cs = impl_->state.contact;

@@ -111,7 +111,7 @@ std::vector<int> rcb_parts(const MpiComm& comm, std::span<const Vec2> x,
     return part;
 }
 
-std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m) {
+std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m, int parts) {
     std::vector<Vec2> centre;
     std::vector<double> weight;
     node_group_points(m, centre, weight);
@@ -124,7 +124,7 @@ std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m) {
         gid[g - b] = g;
     const std::vector<int> part =
         rcb_parts(comm, std::span<const Vec2>(centre).subspan(b, e - b),
-                  std::span<const double>(weight).subspan(b, e - b), gid, P);
+                  std::span<const double>(weight).subspan(b, e - b), gid, parts > 0 ? parts : P);
     std::vector<char> mine(part.size() * sizeof(int32_t)), all;
     for (size_t k = 0; k < part.size(); ++k) {
         const int32_t p = part[k];
@@ -136,6 +136,16 @@ std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m) {
         throw std::runtime_error("rcb_group_owners: the gathered parts do not cover the groups");
     }
     std::memcpy(owner.data(), all.data(), all.size());
+    // Zoltan numbers the parts of the same cuts differently on different process counts (one
+    // process asked for P parts by `fdem decompose`, or P processes): number them in the order
+    // of their first group, so that both give the same owners
+    std::vector<int32_t> label(static_cast<size_t>(parts > 0 ? parts : P), -1);
+    int32_t next = 0;
+    for (int32_t& o : owner) {
+        int32_t& l = label[static_cast<size_t>(o)];
+        if (l < 0) l = next++;
+        o = l;
+    }
     return owner;
 }
 

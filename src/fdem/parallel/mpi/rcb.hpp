@@ -21,9 +21,11 @@ std::vector<int> rcb_parts(const MpiComm& comm, std::span<const Vec2> x,
                            int parts);
 
 /// The process of every node group of m (distributed.hpp node_group_points(): centres and
-/// weights) by rcb_parts() with one part per process: each process hands Zoltan a contiguous
-/// share of the groups, and the parts are all-gathered, so every process returns the same
-/// vector. Collective.
-std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m);
+/// weights) by rcb_parts() with `parts` parts (<= 0: one per process): each process hands
+/// Zoltan a contiguous share of the groups, and the parts are all-gathered, so every process
+/// returns the same vector. The parts are numbered in the order of their first group (Zoltan's
+/// numbering of the same cuts differs with the process count), so one process asked for P
+/// parts (`fdem decompose`) gives the owners of P processes. Collective.
+std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m, int parts = 0);
 
 }  // namespace fdem

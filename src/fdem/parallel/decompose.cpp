@@ -1,0 +1,178 @@
+// Counts of a decomposition: see parallel/decompose.hpp.
+#include "parallel/decompose.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "contact/contact.hpp"
+#include "integrate/node_update.hpp"
+#include "parallel/distributed.hpp"
+
+namespace fdem {
+
+namespace {
+
+constexpr int64_t kGhostBytes = 4 * sizeof(double);  // x and v of a node (exchange_ghosts())
+
+// the counts that depend only on the plan's own lists (not on what others need from it)
+PartCounts own_counts(const Model& m, const State& s, const StepPlan& p) {
+    PartCounts c;
+    c.part = p.rank;
+    for (const auto& [b, e] : p.own_runs)
+        c.nodes += e - b;
+    const ElementSubset& es = p.elements;
+    c.chunks_run = static_cast<int64_t>(es.chunks.size());
+    for (size_t k = 0; k < es.chunks.size(); ++k) {
+        const auto [b, e] = m.element_schedule.chunk_tris[static_cast<size_t>(es.chunks[k])];
+        c.tris_run += e - b;
+        if (es.counts_energy[k]) c.tris_counted += e - b;
+    }
+    const ContactTopology& ct = s.topology;
+    const int32_t* owner = p.node_owner.data();
+    if (m.contact.algorithm != ContactAlgorithm::None &&
+        m.contact.algorithm != ContactAlgorithm::LegacyTriangle) {
+        for (const NodeId j : s.contact.cand.node)
+            c.candidate_pairs += owner[target_node(ct, j)] == p.rank;
+        for (const ActiveContact& a : s.contact.active)
+            c.contact_records += owner[target_node(ct, a.node)] == p.rank;
+    }
+    if (!p.bc_counts.empty()) c.support_slots = p.bc_counts[static_cast<size_t>(p.rank)] / 2;
+    const GhostExchange& g = p.ghosts;
+    if (g.active) {
+        for (int q = 0; q < p.procs; ++q) {
+            const int r = g.recv_counts[static_cast<size_t>(q)] / 4;
+            c.ghost_nodes += r;
+            c.recv_from += r > 0;
+        }
+    } else if (p.procs > 1) {
+        // no ghost lists (joints, baseline A): x and v of every node all-gathered every step
+        c.ghost_nodes = m.num_nodes() - c.nodes;
+        c.recv_from = p.procs - 1;
+    }
+    return c;
+}
+
+}  // namespace
+
+PartCounts part_counts(const Model& m, const State& s, const StepPlan& p) {
+    PartCounts c = own_counts(m, s, p);
+    // the records this process did all-gather at its last step (decompose() counts the pairs
+    // of its targets in the active list: the test of the two is mpi.decompose_*)
+    if (m.contact.algorithm != ContactAlgorithm::None &&
+        m.contact.algorithm != ContactAlgorithm::LegacyTriangle)
+        c.contact_records = static_cast<int64_t>(p.contact.send.size() / kContactRecordBytes);
+    const GhostExchange& g = p.ghosts;
+    if (g.active) {
+        for (int q = 0; q < p.procs; ++q) {
+            const int n = g.send_counts[static_cast<size_t>(q)] / 4;
+            c.send_nodes += n;
+            c.send_to += n > 0;
+        }
+    } else if (p.procs > 1) {
+        c.send_nodes = c.nodes * (p.procs - 1);
+        c.send_to = p.procs - 1;
+    }
+    return c;
+}
+
+std::vector<PartCounts> decompose(const Model& m, const State& s,
+                                  std::span<const int32_t> group_owner, int32_t parts) {
+    if (parts < 1) throw std::invalid_argument("decompose: parts must be >= 1");
+    std::vector<PartCounts> out(static_cast<size_t>(parts));
+    // what each part receives from each other: (from, to, nodes)
+    struct Flow {
+        int32_t from, to;
+        int64_t nodes;
+    };
+    std::vector<Flow> flows;
+    // a plan per part (O(nodes + triangles) each: ~10^3 parts of 10^7 triangles in minutes),
+    // the node owners handed from one to the next
+    std::vector<int32_t> node_owner(static_cast<size_t>(m.num_nodes()));
+    {
+        const int32_t groups = (m.num_nodes() + kNodeGroup - 1) / kNodeGroup;
+        if (group_owner.size() != static_cast<size_t>(groups))
+            throw std::invalid_argument("decompose: group_owner must have one entry per group");
+        for (size_t i = 0; i < node_owner.size(); ++i) {
+            const int32_t o = group_owner[i / kNodeGroup];
+            if (o < 0 || o >= parts) throw std::invalid_argument("decompose: owner out of range");
+            node_owner[i] = o;
+        }
+    }
+    for (int32_t r = 0; r < parts; ++r) {
+        StepPlan p = make_part_plan(m, r, parts, std::move(node_owner));
+        if (p.ghosts.active) ghost_receive_lists(m, s, p);
+        out[static_cast<size_t>(r)] = own_counts(m, s, p);
+        if (p.ghosts.active) {
+            for (int32_t q = 0; q < parts; ++q) {
+                const int n = p.ghosts.recv_counts[static_cast<size_t>(q)] / 4;
+                if (n > 0) flows.push_back({q, r, n});
+            }
+        } else if (parts > 1) {
+            PartCounts& c = out[static_cast<size_t>(r)];
+            c.send_nodes = c.nodes * (parts - 1);
+            c.send_to = parts - 1;
+        }
+        node_owner = std::move(p.node_owner);
+    }
+    // what a part sends: what the others receive from it (rebuild_ghosts() learns it from an
+    // all-gather of the receive lists; a run's counts check this, test mpi.decompose_*)
+    for (const Flow& f : flows) {
+        PartCounts& c = out[static_cast<size_t>(f.from)];
+        c.send_nodes += f.nodes;
+        ++c.send_to;
+    }
+    return out;
+}
+
+std::vector<int32_t> group_owners(const Model& m, const std::string& rule, int32_t parts) {
+    const int32_t groups = (m.num_nodes() + kNodeGroup - 1) / kNodeGroup;
+    std::vector<int32_t> owner(static_cast<size_t>(groups));
+    if (rule == "random") {
+        uint64_t h = 0x9e3779b97f4a7c15ull;
+        for (int32_t g = 0; g < groups; ++g) {
+            h ^= h >> 31;
+            h *= 0xbf58476d1ce4e5b9ull;
+            h ^= h >> 27;
+            owner[static_cast<size_t>(g)] = static_cast<int32_t>(h % static_cast<uint64_t>(parts));
+        }
+    } else if (rule == "ids") {
+        for (int32_t r = 0; r < parts; ++r) {
+            for (int32_t g = static_cast<int32_t>(int64_t{groups} * r / parts);
+                 g < static_cast<int32_t>(int64_t{groups} * (r + 1) / parts); ++g)
+                owner[static_cast<size_t>(g)] = r;
+        }
+    } else {
+        throw std::invalid_argument("group_owners: unknown rule \"" + rule + "\"");
+    }
+    return owner;
+}
+
+int64_t ghost_bytes_in(const PartCounts& c) {
+    return kGhostBytes * c.ghost_nodes;
+}
+int64_t ghost_bytes_out(const PartCounts& c) {
+    return kGhostBytes * c.send_nodes;
+}
+int64_t gathered_bytes(const PartCounts& c) {
+    return static_cast<int64_t>(kContactRecordBytes) * c.contact_records +
+           static_cast<int64_t>(2 * sizeof(double)) * c.support_slots;
+}
+
+std::string partition_csv(std::span<const PartCounts> parts) {
+    std::string out =
+        "parts,part,nodes,tris_counted,tris_run,chunks_run,ghost_nodes,send_nodes,recv_from,"
+        "send_to,candidate_pairs,contact_records,support_slots,ghost_bytes_in,ghost_bytes_out,"
+        "gathered_bytes\n";
+    for (const PartCounts& c : parts) {
+        out +=
+            fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", parts.size(), c.part,
+                        c.nodes, c.tris_counted, c.tris_run, c.chunks_run, c.ghost_nodes,
+                        c.send_nodes, c.recv_from, c.send_to, c.candidate_pairs, c.contact_records,
+                        c.support_slots, ghost_bytes_in(c), ghost_bytes_out(c), gathered_bytes(c));
+    }
+    return out;
+}
+
+}  // namespace fdem

@@ -1,0 +1,67 @@
+// What each process of a distributed run owns, computes and exchanges per step (issue #15,
+// spec parallel-and-python.md §4.3, milestone M5): counted from the same plan and ghost lists
+// a distributed run uses, either by the run itself (each process its own part, Simulation::
+// partition_counts()) or for any number of parts in one process (`fdem decompose --parts P`,
+// decompose()), so that the counts of a dry run for P = 1024 are those P processes would have.
+// Part of libfdem (no MPI).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fdem/model.hpp"
+#include "fdem/state.hpp"
+
+namespace fdem {
+
+struct StepPlan;  // parallel/distributed.hpp
+
+/// One part (process) of a decomposition, at the current candidate pairs and pairs in contact.
+/// Per step a part receives 4 doubles (x, v) of each ghost node in one message from each
+/// process in recv_from and sends those of its send_nodes in one message to each of send_to
+/// (point to point); all-gathers its contact records (kContactRecordBytes each) with every
+/// process; and joins the collectives of the step (decompose.cpp step_collectives()).
+struct PartCounts {
+    int32_t part = 0;
+    int64_t nodes = 0;            ///< owned nodes (whole groups of kNodeGroup ids)
+    int64_t tris_counted = 0;     ///< triangles of the element chunks whose energy it counts
+    int64_t tris_run = 0;         ///< triangles of every chunk it runs (owned + halo)
+    int64_t chunks_run = 0;       ///< element chunks it runs
+    int64_t ghost_nodes = 0;      ///< nodes it receives every step
+    int64_t send_nodes = 0;       ///< node copies it sends every step (summed over receivers)
+    int32_t recv_from = 0;        ///< processes it receives ghosts from (messages in per step)
+    int32_t send_to = 0;          ///< processes it sends ghosts to (messages out per step)
+    int64_t candidate_pairs = 0;  ///< candidate pairs of its targets (its narrow phase)
+    int64_t contact_records = 0;  ///< pairs of its targets in contact (records it all-gathers)
+    int64_t support_slots = 0;    ///< supported nodes it owns (reactions it all-gathers)
+};
+
+/// The counts of plan's process (its ghost lists must be current: after a step of the
+/// distributed run, or ghost_receive_lists() plus the send half, as decompose() does).
+PartCounts part_counts(const Model& m, const State& s, const StepPlan& plan);
+
+/// The counts of every part of the decomposition `group_owner` (the part of each node group,
+/// values in [0, parts)) at the candidate pairs and pairs in contact of s: what
+/// Simulation::partition_counts() of a run with `parts` processes and the same group owners
+/// reports at the same step. One process; O(parts x (nodes + triangles)) time.
+std::vector<PartCounts> decompose(const Model& m, const State& s,
+                                  std::span<const int32_t> group_owner, int32_t parts);
+
+/// The owner of each node group for `parts` processes by a named rule that needs no MPI: "ids"
+/// (contiguous ranges of about the same number of groups, make_step_plan()'s default) or
+/// "random" (a fixed hash of the group id: a test of partition independence, spec T3).
+std::vector<int32_t> group_owners(const Model& m, const std::string& rule, int32_t parts);
+
+/// partition.csv: a header line and one row per part (the fields of PartCounts, then the bytes
+/// per step it receives and sends point to point and all-gathers).
+std::string partition_csv(std::span<const PartCounts> parts);
+
+/// Bytes per step a part exchanges: ghost bytes in and out (32 per node) and the bytes of the
+/// step's all-gathers it contributes (contact records, support reactions).
+int64_t ghost_bytes_in(const PartCounts& c);
+int64_t ghost_bytes_out(const PartCounts& c);
+int64_t gathered_bytes(const PartCounts& c);
+
+}  // namespace fdem
