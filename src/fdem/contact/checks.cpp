@@ -41,16 +41,49 @@ struct Box {
     Vec2 lo, hi;
 };
 
+// whether boundary edge e crosses the ray from p to +x (the even-odd rule's term)
+bool crosses(const Model& m, const ContactTopology& ct, int32_t e, Vec2 p) {
+    const Vec2 a = m.node_x0[ct.boundary_edges[e][0]], c = m.node_x0[ct.boundary_edges[e][1]];
+    if ((a.y > p.y) != (c.y > p.y)) {
+        const Real xc = a.x + (p.y - a.y) * (c.x - a.x) / (c.y - a.y);
+        return p.x < xc;
+    }
+    return false;
+}
+
 // even-odd test of p against the boundary edges of body b (holes included), reference positions
 bool inside(const Model& m, const ContactTopology& ct, BodyId b, Vec2 p) {
     bool in = false;
-    for (int32_t e = ct.body_bedge_begin[b]; e < ct.body_bedge_begin[b + 1]; ++e) {
-        const Vec2 a = m.node_x0[ct.boundary_edges[e][0]], c = m.node_x0[ct.boundary_edges[e][1]];
-        if ((a.y > p.y) != (c.y > p.y)) {
-            const Real xc = a.x + (p.y - a.y) * (c.x - a.x) / (c.y - a.y);
-            if (p.x < xc) in = !in;
-        }
+    for (int32_t e = ct.body_bedge_begin[b]; e < ct.body_bedge_begin[b + 1]; ++e)
+        in = in != crosses(m, ct, e, p);
+    return in;
+}
+
+// Horizontal strips of one large body (a wall ring around a raster of 10^6 particles has 10^4
+// boundary edges and is a neighbour of every particle): its boundary edges by the strips their
+// y-range meets, and its test points by strip. strip(y) is non-decreasing in y (a subtraction
+// and a division by h > 0, then floor), so an edge whose y-range holds p.y is in p's strip, and
+// a point in a box is in a strip the box's y-range meets: the tests below skip only what could
+// not count.
+struct Strips {
+    Real y0 = 0, h = 1;
+    int32_t n = 1;
+    std::vector<int32_t> edge_begin, edges;    // CSR: boundary edges meeting strip s
+    std::vector<int32_t> point_begin, points;  // CSR: point sequence numbers in strip s
+    int32_t strip(Real y) const {
+        const Real s = std::floor((y - y0) / h);
+        return s < 0 ? 0 : (s >= n ? n - 1 : static_cast<int32_t>(s));
     }
+};
+
+// bodies with more boundary edges than this get strips (smaller ones: the plain loops)
+constexpr int32_t kStripEdges = 256;
+
+bool inside_strips(const Model& m, const ContactTopology& ct, const Strips& st, Vec2 p) {
+    bool in = false;
+    const int32_t s = st.strip(p.y);
+    for (int32_t k = st.edge_begin[s]; k < st.edge_begin[s + 1]; ++k)
+        in = in != crosses(m, ct, st.edges[k], p);
     return in;
 }
 
@@ -97,9 +130,88 @@ InitialOverlap find_initial_overlap(const Model& m, const ContactTopology& ct) {
     auto in_box = [](const Box& x, Vec2 p) {
         return p.x > x.lo.x && p.x < x.hi.x && p.y > x.lo.y && p.y < x.hi.y;
     };
+    // strips of the bodies with many boundary edges (else empty)
+    std::vector<Strips> strips(static_cast<size_t>(nb));
+    auto num_points = [&](BodyId a) {
+        return (ct.body_bnode_begin[a + 1] - ct.body_bnode_begin[a]) +
+               (ct.body_bedge_begin[a + 1] - ct.body_bedge_begin[a]) +
+               (btri_begin[a + 1] - btri_begin[a]);
+    };
+    // test point q of body a (in the order of points_of_in(): boundary nodes, boundary-edge
+    // midpoints, centroids of boundary elements)
+    struct TestPoint {
+        Vec2 p;
+        InitialOverlap::Point kind;
+        NodeId node;
+        int32_t edge;
+        TriId tri;
+    };
+    auto point = [&](BodyId a, int32_t q) -> TestPoint {
+        const int32_t nn = ct.body_bnode_begin[a + 1] - ct.body_bnode_begin[a];
+        const int32_t ne = ct.body_bedge_begin[a + 1] - ct.body_bedge_begin[a];
+        if (q < nn) {
+            const NodeId i = ct.boundary_nodes[ct.body_bnode_begin[a] + q];
+            return {m.node_x0[i], InitialOverlap::Point::Node, i, -1, kNone};
+        }
+        if (q < nn + ne) {
+            const int32_t e = ct.body_bedge_begin[a] + q - nn;
+            const auto& be = ct.boundary_edges[e];
+            return {0.5 * (m.node_x0[be[0]] + m.node_x0[be[1]]),
+                    InitialOverlap::Point::EdgeMidpoint, be[0], e, kNone};
+        }
+        const TriId t = ct.boundary_tris[btri_begin[a] + q - nn - ne];
+        const auto& n = m.tri_nodes[t];
+        return {(m.node_x0[n[0]] + m.node_x0[n[1]] + m.node_x0[n[2]]) / 3.0,
+                InitialOverlap::Point::Centroid, n[0], -1, t};
+    };
+    for (BodyId b = 0; b < nb; ++b) {
+        const int32_t E = ct.body_bedge_begin[b + 1] - ct.body_bedge_begin[b];
+        if (E <= kStripEdges) continue;
+        Strips& st = strips[static_cast<size_t>(b)];
+        st.y0 = box[b].lo.y;
+        st.n = std::min<int32_t>(E / 4, 1 << 16);
+        st.h = (box[b].hi.y - box[b].lo.y) / st.n;
+        if (!(st.h > 0) || !std::isfinite(st.h)) {
+            st.n = 1;
+            st.h = 1;
+        }
+        st.edge_begin.assign(static_cast<size_t>(st.n) + 1, 0);
+        auto edge_strips = [&](int32_t e) {
+            const Real ya = m.node_x0[ct.boundary_edges[e][0]].y;
+            const Real yc = m.node_x0[ct.boundary_edges[e][1]].y;
+            return std::pair<int32_t, int32_t>{st.strip(std::min(ya, yc)),
+                                               st.strip(std::max(ya, yc))};
+        };
+        for (int32_t e = ct.body_bedge_begin[b]; e < ct.body_bedge_begin[b + 1]; ++e) {
+            const auto [s0, s1] = edge_strips(e);
+            for (int32_t k = s0; k <= s1; ++k)
+                ++st.edge_begin[static_cast<size_t>(k) + 1];
+        }
+        std::partial_sum(st.edge_begin.begin(), st.edge_begin.end(), st.edge_begin.begin());
+        st.edges.resize(static_cast<size_t>(st.edge_begin.back()));
+        std::vector<int32_t> at(st.edge_begin.begin(), st.edge_begin.end() - 1);
+        for (int32_t e = ct.body_bedge_begin[b]; e < ct.body_bedge_begin[b + 1]; ++e) {
+            const auto [s0, s1] = edge_strips(e);
+            for (int32_t k = s0; k <= s1; ++k)
+                st.edges[static_cast<size_t>(at[static_cast<size_t>(k)]++)] = e;
+        }
+        const int32_t np = num_points(b);
+        st.point_begin.assign(static_cast<size_t>(st.n) + 1, 0);
+        for (int32_t q = 0; q < np; ++q)
+            ++st.point_begin[static_cast<size_t>(st.strip(point(b, q).p.y)) + 1];
+        std::partial_sum(st.point_begin.begin(), st.point_begin.end(), st.point_begin.begin());
+        st.points.resize(static_cast<size_t>(np));
+        at.assign(st.point_begin.begin(), st.point_begin.end() - 1);
+        for (int32_t q = 0; q < np; ++q)  // ascending within each strip
+            st.points[static_cast<size_t>(at[static_cast<size_t>(st.strip(point(b, q).p.y))]++)] =
+                q;
+    }
+
     auto test = [&](BodyId a, BodyId b, Vec2 p, InitialOverlap::Point kind, NodeId node,
                     int32_t edge, TriId tri) {
-        if (!in_box(box[b], p) || !inside(m, ct, b, p)) return;
+        if (!in_box(box[b], p)) return;
+        const Strips& sb = strips[static_cast<size_t>(b)];
+        if (!(sb.edge_begin.empty() ? inside(m, ct, b, p) : inside_strips(m, ct, sb, p))) return;
         const Real d = boundary_distance(m, ct, b, p);
         if (!(d > tol) || (best.found && !(d > best.depth))) return;
         best.found = true;
@@ -114,21 +226,28 @@ InitialOverlap find_initial_overlap(const Model& m, const ContactTopology& ct) {
     };
     // points of body a inside body b: boundary nodes, boundary-edge midpoints, centroids of
     // boundary elements (the last ones find coincident meshes, whose boundaries coincide)
+    std::vector<int32_t> picked;  // points of a large body in the strips of another's box
     auto points_of_in = [&](BodyId a, BodyId b) {
-        for (int32_t k = ct.body_bnode_begin[a]; k < ct.body_bnode_begin[a + 1]; ++k) {
-            const NodeId i = ct.boundary_nodes[k];
-            test(a, b, m.node_x0[i], InitialOverlap::Point::Node, i, -1, kNone);
+        const Strips& sa = strips[static_cast<size_t>(a)];
+        if (sa.point_begin.empty()) {
+            for (int32_t q = 0, np = num_points(a); q < np; ++q) {
+                const TestPoint t = point(a, q);
+                test(a, b, t.p, t.kind, t.node, t.edge, t.tri);
+            }
+            return;
         }
-        for (int32_t e = ct.body_bedge_begin[a]; e < ct.body_bedge_begin[a + 1]; ++e) {
-            const auto& be = ct.boundary_edges[e];
-            test(a, b, 0.5 * (m.node_x0[be[0]] + m.node_x0[be[1]]),
-                 InitialOverlap::Point::EdgeMidpoint, be[0], e, kNone);
+        // only points in b's box can count: those of the strips b's box meets, in their order
+        picked.clear();
+        for (int32_t k = sa.strip(box[b].lo.y); k <= sa.strip(box[b].hi.y); ++k) {
+            for (int32_t j = sa.point_begin[k]; j < sa.point_begin[k + 1]; ++j) {
+                const int32_t q = sa.points[static_cast<size_t>(j)];
+                if (in_box(box[b], point(a, q).p)) picked.push_back(q);
+            }
         }
-        for (int32_t k = btri_begin[a]; k < btri_begin[a + 1]; ++k) {
-            const TriId t = ct.boundary_tris[k];
-            const auto& n = m.tri_nodes[t];
-            const Vec2 c = (m.node_x0[n[0]] + m.node_x0[n[1]] + m.node_x0[n[2]]) / 3.0;
-            test(a, b, c, InitialOverlap::Point::Centroid, n[0], -1, t);
+        std::sort(picked.begin(), picked.end());
+        for (const int32_t q : picked) {
+            const TestPoint t = point(a, q);
+            test(a, b, t.p, t.kind, t.node, t.edge, t.tri);
         }
     };
 

@@ -79,6 +79,10 @@ void ghost_receive_lists(const Model& m, const State& s, const StepPlan& p) {
     }
     for (const BodyId b : contactor_bodies(m, s, p)) {
         const Body& body = m.bodies[static_cast<size_t>(b)];
+        // a fixed body's nodes never move (x = x0, v = 0 from the start or a restore, on every
+        // process): nothing to send (a wall ring around a raster would otherwise reach every
+        // process along the walls whole)
+        if (body.fixed) continue;
         std::fill(mark.begin() + body.node_begin, mark.begin() + body.node_end, uint8_t{1});
     }
     // the ghosts, by owner then id, and their count per owner (in doubles, 4 per node)

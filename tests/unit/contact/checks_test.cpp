@@ -87,6 +87,60 @@ TEST(InitialOverlap, BodyInsideAnotherIsFound) {
     EXPECT_GT(o.depth, 4.0);
 }
 
+// Bodies with more than 256 boundary edges are tested through horizontal strips of their edges
+// and points (checks.cpp Strips; a wall ring around 10^6 particles made the load quadratic). A
+// 10 x 10 square meshed with 10 (40 boundary edges: plain loops) and 100 cells per side (400:
+// strips), 100 small squares around it at a gap, and: nothing more (no overlap); a square 0.47
+// deep inside it (its bottom nodes are the deepest points: the even-odd test through the
+// strips; both meshes find the same point); a square sunk 0.03 through its bottom face (a tie
+// of depths, which the points of the big body win by coming first: with 100 cells an edge
+// midpoint of the big body lies in the small square, picked through the strips; with 10 cells
+// none does and the small square's node is reported).
+TEST(InitialOverlap, LargeBodiesGiveTheSameResultThroughStrips) {
+    for (const int variant : {0, 1, 2}) {
+        SCOPED_TRACE(variant);
+        InitialOverlap found[2];
+        for (int k = 0; k < 2; ++k) {
+            const int cells = k == 0 ? 10 : 100;
+            ModelBuilder b;
+            b.add_body(make_rectangle_mesh(0, 0, 10, 10, cells, cells));
+            for (int i = 0; i < 25; ++i) {  // a ring of small squares 0.05 off the faces
+                const Real t = 0.4 * i;
+                b.add_body(make_rectangle_mesh(t, -0.45, 0.3, 0.4, 2, 2));
+                b.add_body(make_rectangle_mesh(t, 10.05, 0.3, 0.4, 2, 2));
+                b.add_body(make_rectangle_mesh(-0.45, t, 0.4, 0.3, 2, 2));
+                b.add_body(make_rectangle_mesh(10.05, t, 0.4, 0.3, 2, 2));
+            }
+            if (variant == 1) b.add_body(make_rectangle_mesh(6.23, 9.53, 0.2, 0.2, 1, 1));
+            if (variant == 2) b.add_body(make_rectangle_mesh(3.51, -0.04, 0.08, 0.07, 1, 1));
+            found[k] = overlap_of(b.finalize());
+        }
+        ASSERT_EQ(found[0].found, variant != 0);
+        ASSERT_EQ(found[1].found, variant != 0);
+        if (variant == 1) {
+            for (const InitialOverlap& o : found) {
+                EXPECT_EQ(o.body, 101);
+                EXPECT_EQ(o.other, 0);
+                EXPECT_NEAR(o.depth, 0.47, 1e-12);
+                EXPECT_EQ(o.point, InitialOverlap::Point::Node);
+            }
+            EXPECT_EQ(found[0].where.x, found[1].where.x);
+            EXPECT_EQ(found[0].where.y, found[1].where.y);
+        }
+        if (variant == 2) {
+            EXPECT_EQ(found[0].body, 101);
+            EXPECT_EQ(found[0].point, InitialOverlap::Point::Node);
+            EXPECT_EQ(found[1].body, 0);
+            EXPECT_EQ(found[1].other, 101);
+            EXPECT_EQ(found[1].point, InitialOverlap::Point::EdgeMidpoint);
+            EXPECT_NEAR(found[1].where.x, 3.55, 1e-12);
+            EXPECT_EQ(found[1].where.y, 0.0);
+            for (const InitialOverlap& o : found)
+                EXPECT_NEAR(o.depth, 0.03, 1e-12);
+        }
+    }
+}
+
 // two fixed bodies never interact: their overlap is not reported
 TEST(InitialOverlap, TwoFixedBodiesAreNotCompared) {
     EXPECT_FALSE(overlap_of(two_squares(-0.3, 0, true, true)).found);
