@@ -95,8 +95,9 @@ add_test(NAME mpi.example.12_particles_mpi
 set_tests_properties(mpi.example.12_particles_mpi PROPERTIES LABELS mpi TIMEOUT 120 PROCESSORS 2
                      PASS_REGULAR_EXPRESSION "OK: the example is bitwise the serial run")
 # ... and at its default size, 316 x 316 = 99 856 particles on 4 processes, for 2e-6 s (6 steps,
-# frames at 0 and the end: ~220 MB each): each process loads the whole scenario (~60-80 s on 2
-# cores, 450 MB per process), so label full: `ctest --test-dir build/release -L full -R 12_`
+# 3 frames of ~220 MB): each process loads the whole scenario (measured: 69 s for the test on an
+# idle 2-core machine, 450 MB per process), so label full: `ctest --test-dir build/release -L full
+# -R 12_`
 add_test(NAME example.12_particles_mpi_full
          COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
                  ${mpi_dir}/raster_example.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
