@@ -84,6 +84,27 @@ add_test(NAME mpi.same_as_serial.merged_frames
                  ${mpi_dir}/merged.toml ${mpi_out}/merged "3")
 set_tests_properties(mpi.same_as_serial.merged_frames PROPERTIES LABELS mpi TIMEOUT 300
                      PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+# Example 12 (issue #15 "Done when"): the example's own run script (make_raster.py, the generated
+# scenario, mpirun, the picture) at N = 20 (400 particles) on 4 processes to 4e-4 s (~880 steps;
+# grains touch from ~2e-4 s on) is bitwise the serial run of the scenario it generated: state hash,
+# history.csv, bodies.csv, the last .pvtu merged by check_pvtu.py (~5 s on an idle machine)
+add_test(NAME mpi.example.12_particles_mpi
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/raster_example.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${mpi_out}/12_particles_mpi 20 4 4e-4)
+set_tests_properties(mpi.example.12_particles_mpi PROPERTIES LABELS mpi TIMEOUT 120 PROCESSORS 2
+                     PASS_REGULAR_EXPRESSION "OK: the example is bitwise the serial run")
+# ... and at its default size, 316 x 316 = 99 856 particles on 4 processes, for 2e-6 s (6 steps,
+# 3 frames of ~220 MB): each process loads the whole scenario (measured: 69 s for the test on an
+# idle 2-core machine, 450 MB per process), so label full: `ctest --test-dir build/release -L full
+# -R 12_`
+add_test(NAME example.12_particles_mpi_full
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/raster_example.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${mpi_out}/12_particles_mpi_full 0 4 2e-6 1)
+set_tests_properties(example.12_particles_mpi_full PROPERTIES LABELS full TIMEOUT 900
+                     PROCESSORS 2 PASS_REGULAR_EXPRESSION
+                     "OK: the example ran and wrote its .pvtu series")
 # T2: two OpenMP threads inside each of two processes
 add_test(NAME mpi.same_as_serial.two_threads_per_process
          COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV} OMP_NUM_THREADS=2
