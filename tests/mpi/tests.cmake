@@ -165,3 +165,18 @@ foreach(case "04_rcb:${ex}/04_particles/scenario.toml:2 3 4:rcb:3e-4"
                        PROCESSORS 2 PASS_REGULAR_EXPRESSION
                        "OK: fdem decompose counts what the processes exchanged")
 endforeach()
+# D9 for output: an error only process 0 meets (history.csv on a full device at the start, a
+# folder in the place of the checkpoint mid-run) stops every process with the serial exit code
+# and message instead of a hang
+foreach(case "history:2" "checkpoint:3")
+  string(REPLACE ":" ";" case "${case}")
+  list(GET case 0 kind)
+  list(GET case 1 np)
+  add_test(NAME mpi.same_failure.output_${kind}
+           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                   ${mpi_dir}/output_failure.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                   ${ex}/03_contact_slide/scenario.toml ${mpi_out}/output_${kind} ${np} ${kind}
+                   0.002)
+  set_tests_properties(mpi.same_failure.output_${kind} PROPERTIES LABELS mpi TIMEOUT 200
+                       PASS_REGULAR_EXPRESSION "OK: an output error of process 0 stops every")
+endforeach()

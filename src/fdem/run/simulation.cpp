@@ -76,10 +76,32 @@ struct Simulation::Impl {
 
     int64_t steps_to(Real t) const { return static_cast<int64_t>(std::ceil(t / state.dt - 1e-9)); }
 
+    /// fn, which only process 0 does (its files): in a distributed run every process takes part,
+    /// so that an error of process 0 (a full disk, a folder in the way) stops every process with
+    /// its message instead of leaving the others waiting in the next step's collectives (spec
+    /// D9; test mpi.same_failure.output_*). The same call on every process.
+    template <class F>
+    void on_writer(F&& fn) {
+        if (plan && comm->size() > 1) {
+            run_collectively(*comm, [&] {
+                if (writes) fn();
+            });
+        } else if (writes) {
+            fn();
+        }
+    }
+
+    bool writers_open = false;  ///< ensure_writers() ran (on every process)
+
     // The writers are created at the first run, after a possible restore_checkpoint(), so that a
     // restart continues history.csv instead of truncating it.
     void ensure_writers() {
-        if (out_dir.empty() || history || !writes) return;
+        if (out_dir.empty() || writers_open) return;
+        writers_open = true;
+        on_writer([&] { open_writers(); });
+    }
+
+    void open_writers() {
         const fs::path out = out_dir;
         if (!restart_from.empty()) adopt_earlier_output();
         history = restarted
@@ -128,6 +150,7 @@ struct Simulation::Impl {
 
     void close_writers() {
         history.reset();
+        writers_open = false;
         series.reset();
         bodies.reset();
         resultants.reset();
@@ -199,12 +222,15 @@ struct Simulation::Impl {
     void write_output(bool last) {
         complete_state();
         if (frame_in_pieces()) write_piece();
-        if (!writes) {  // another process writes; keep the same bookkeeping
-            ++prog.frame;
-            prog.next_output +=
-                run.output.interval > 0 ? run.output.interval : run.end_time / 100.0;
-            return;
-        }
+        on_writer([&] { write_files(last); });
+        // (the bookkeeping of every process, also those that do not write)
+        ++prog.frame;
+        const Real interval = run.output.interval > 0 ? run.output.interval : run.end_time / 100.0;
+        prog.next_output += interval;
+    }
+
+    // process 0's part of write_output()
+    void write_files(bool last) {
         const fs::path out = out_dir;
         history->write(model, state);
         if (bodies) {
@@ -229,9 +255,6 @@ struct Simulation::Impl {
             last_frame = {(out / frame).string(), state.step, state.time};
         }
         if (fracture) fracture->write_output(model, state, prog.frame, last);
-        ++prog.frame;
-        const Real interval = run.output.interval > 0 ? run.output.interval : run.end_time / 100.0;
-        prog.next_output += interval;
     }
 
     std::string checkpoint_path() const {
@@ -240,9 +263,10 @@ struct Simulation::Impl {
 
     void write_checkpoint_file(const std::string& path) {
         complete_state();
-        if (!writes) return;
-        write_checkpoint(path, model, state, prog);
-        last_checkpoint = {path, state.step, state.time};
+        on_writer([&] {
+            write_checkpoint(path, model, state, prog);
+            last_checkpoint = {path, state.step, state.time};
+        });
     }
 
     /// One step of the loop: energies where they are read, step, checks, output and checkpoint
