@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Write the N x N particle raster of examples/04_particles/particles.geo as an MSH 2.2 file.
 
-Usage: /usr/bin/python3 make_raster.py N OUT.msh
+Usage: /usr/bin/python3 make_raster.py N OUT.msh [--order morton|rows]
 
 Gmsh needs minutes and gigabytes to read particles.geo at N = 316 (~10^5 particles), although
 every particle is only k = 5..8 triangles fanned from its centre: this script computes the same
@@ -11,6 +11,14 @@ index gives the vertex count k, the start angle, and per vertex the angle jitter
 evaluated in the same double arithmetic, in the same order, with the C library's sin/cos as Gmsh
 does (math.sin, not numpy.sin, whose vectorised kernels may differ in the last bit; the hash
 multiplies that bit by ~4e4). Test: tests/example/raster_matches_gmsh.py (N = 5, to 1e-12 m).
+
+Order: the particles (their nodes and triangles) are written along a Z-order (Morton) curve of
+their raster cells by default, so that consecutive ids are near in space: fdem numbers nodes and
+triangles in file order within each [[body]] entry (group), and a distributed run owns nodes
+in groups of 64 consecutive ids and runs element chunks of 256 consecutive triangles
+(docs/parallel.md). At N = 316 on 4 parts `fdem decompose` counts 11.8 % redundant element work
+and 22 060 ghost nodes per part at t = 0 in Morton order, 100.8 % and 188 690 in row order
+(`--order rows`, particles.geo's order). The particles are the same either way.
 
 Groups: physical surfaces "p0".."p7" (a particle's group by hash, as particles.geo) and "walls":
 a ring of thickness T = 0.02 m around [0, N s]^2, meshed here on a structured 5 mm grid (each
@@ -80,19 +88,29 @@ def wall_ring(n):
     return {p: (coord(p[0]), coord(p[1])) for p in used}, tris
 
 
-def write_msh(n, path):
+def morton(i, j):
+    """Z-order index of raster cell (i, j): the bits of i and j interleaved."""
+    z = 0
+    for b in range(16):
+        z |= ((i >> b) & 1) << (2 * b) | ((j >> b) & 1) << (2 * b + 1)
+    return z
+
+
+def write_msh(n, path, order="morton"):
     names = ["walls"] + [f"p{g}" for g in range(8)]  # physical tags 1..9
     nodes = []  # (x, y)
     elems = []  # (tag, n1, n2, n3), node ids 1-based
-    for j in range(n):
-        for i in range(n):
-            (cx, cy), verts, g = particle(n, i, j)
-            c = len(nodes) + 1
-            nodes.append((cx, cy))
-            nodes.extend(verts)
-            k = len(verts)
-            for q in range(k):
-                elems.append((g + 2, c, c + 1 + q, c + 1 + (q + 1) % k))
+    cells = [(i, j) for j in range(n) for i in range(n)]
+    if order == "morton":
+        cells.sort(key=lambda c: morton(*c))
+    for i, j in cells:
+        (cx, cy), verts, g = particle(n, i, j)
+        c = len(nodes) + 1
+        nodes.append((cx, cy))
+        nodes.extend(verts)
+        k = len(verts)
+        for q in range(k):
+            elems.append((g + 2, c, c + 1 + q, c + 1 + (q + 1) % k))
     pts, tris = wall_ring(n)
     ids = {}
     for p, xy in pts.items():
@@ -112,12 +130,17 @@ def write_msh(n, path):
 
 
 def main():
-    if len(sys.argv) != 3:
+    args = sys.argv[1:]
+    order = "morton"
+    if len(args) == 4 and args[2] == "--order" and args[3] in ("morton", "rows"):
+        order = args[3]
+        args = args[:2]
+    if len(args) != 2:
         sys.exit(__doc__)
-    n = int(sys.argv[1])
+    n = int(args[0])
     if n < 1:
         sys.exit("N must be >= 1")
-    particles, nodes, tris = write_msh(n, sys.argv[2])
+    particles, nodes, tris = write_msh(n, args[1], order)
     print(f"{sys.argv[2]}: {particles} particles, {nodes} nodes, {tris} triangles")
 
 

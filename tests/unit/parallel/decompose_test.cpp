@@ -34,8 +34,8 @@ Scene particle_scene() {
 
 // the ghosts of part r by the definition of spec D6 (distributed.hpp GhostExchange): the nodes
 // of every element chunk with a triangle of an owned node, of the loads, the second node of an
-// owned edge target, and every node of the contactor body of a pair of an owned target;
-// minus the owned nodes
+// owned edge target, and every node of the contactor body (unless fixed) of a pair of an owned
+// target; minus the owned nodes
 std::set<NodeId> ghosts_by_definition(const Model& m, const State& s,
                                       const std::vector<int32_t>& node_owner, int32_t r) {
     std::set<NodeId> need;
@@ -60,6 +60,7 @@ std::set<NodeId> ghosts_by_definition(const Model& m, const State& s,
         if (node_owner[static_cast<size_t>(e[0])] != r) continue;
         need.insert(e[1]);
         const Body& b = m.bodies[static_cast<size_t>(s.contact.cand.body[pr])];
+        if (b.fixed) continue;  // its nodes never move: every process has them
         for (NodeId n = b.node_begin; n < b.node_end; ++n)
             need.insert(n);
     }
