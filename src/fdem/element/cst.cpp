@@ -285,35 +285,84 @@ ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_ow
     const int32_t ncolors = static_cast<int32_t>(sc.color_begin.size()) - 1;
     ElementSubset out;
     out.color_begin.push_back(0);
+    out.run_begin.push_back(0);
     for (int32_t c = 0; c < ncolors; ++c) {
         for (int32_t k = sc.color_begin[c]; k < sc.color_begin[c + 1]; ++k) {
             const TriId b = sc.chunk_tris[k][0], e = sc.chunk_tris[k][1];
-            bool needed = false;
-            for (TriId t = b; t < e && !needed; ++t) {
+            const size_t first_run = out.runs.size();
+            for (TriId t = b; t < e; ++t) {
+                bool mine = false;
                 for (NodeId n : m.tri_nodes[t])
-                    needed = needed || node_owner[n] == rank;
+                    mine = mine || node_owner[n] == rank;
+                if (!mine) continue;
+                if (out.runs.size() > first_run && out.runs.back()[1] == t) {
+                    ++out.runs.back()[1];
+                } else {
+                    out.runs.push_back({t, t + 1});
+                }
             }
-            if (!needed) continue;
+            if (out.runs.size() == first_run) continue;  // no triangle of an owned node
+            // a composite's sub-triangles are coupled by its pressure: the chunk whole
+            if (m.bodies[m.tri_body[b]].element == ElementKind::Composite6) {
+                out.runs.resize(first_run);
+                out.runs.push_back({b, e});
+            }
             out.chunks.push_back(k);
             out.counts_energy.push_back(node_owner[m.tri_nodes[b][0]] == rank ? 1 : 0);
+            out.run_begin.push_back(static_cast<int32_t>(out.runs.size()));
         }
         out.color_begin.push_back(static_cast<int32_t>(out.chunks.size()));
     }
     return out;
 }
 
-ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSubset& subset) {
+ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSubset& subset,
+                                      bool viscous_power) {
+    const ElementSchedule& sc = m.element_schedule;
     const int32_t nk = static_cast<int32_t>(subset.chunks.size());
     const int32_t ncolors = static_cast<int32_t>(subset.color_begin.size()) - 1;
-    const Real* part = run_chunks(m, s, subset.color_begin.data(), ncolors, nk,
-                                  [&](int32_t i) { return subset.chunks[static_cast<size_t>(i)]; });
-    // the counted chunks' partials, exactly (theory §4.4); the smallest det F in chunk order
+    if (s.scratch_sums.size() < kChunkSlots * static_cast<size_t>(nk)) {
+        s.scratch_sums.resize(kChunkSlots * static_cast<size_t>(nk));  // first call only
+    }
+    Real* part = s.scratch_sums.data();
+    const Vec2* x = s.x.data();
+    const Vec2* v = s.v.data();
+    Vec2* f = s.f.data();
+    const bool with_energy = s.need_energy;
+    // the counted chunks whole where their sums are read (run_chunks() for the colors and
+    // scheduling; the runs of a chunk in triangle order: the fold of each node unchanged)
+    const bool whole_counted = with_energy || viscous_power;
+#pragma omp parallel if (nk >= kMinParallelChunks)
+    for (int32_t c = 0; c < ncolors; ++c) {
+#pragma omp for schedule(dynamic, 1)
+        for (int32_t i = subset.color_begin[c]; i < subset.color_begin[c + 1]; ++i) {
+            const int32_t k = subset.chunks[static_cast<size_t>(i)];
+            ElementPass p;
+            if (whole_counted && subset.counts_energy[static_cast<size_t>(i)]) {
+                material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy,
+                               p);
+            } else {
+                for (int32_t r = subset.run_begin[i]; r < subset.run_begin[i + 1]; ++r) {
+                    const auto& run = subset.runs[static_cast<size_t>(r)];
+                    material_range(m, x, v, f, run[0], run[1], with_energy, p);
+                }
+            }
+            Real* slot = part + kChunkSlots * static_cast<size_t>(i);
+            slot[0] = p.strain_energy;
+            slot[1] = p.viscous_power;
+            slot[2] = p.min_jacobian;
+            slot[3] = static_cast<Real>(p.min_jacobian_tri);
+        }
+    }
+    // the counted chunks' partials, exactly (theory §4.4); the smallest det F over every
+    // triangle run, the first in (chunk, triangle) order: over the processes the serial one
     ElementSubsetPass out;
     for (int32_t i = 0; i < nk; ++i) {
-        if (!subset.counts_energy[static_cast<size_t>(i)]) continue;
         const Real* slot = part + kChunkSlots * static_cast<size_t>(i);
-        out.strain_energy.add(slot[0]);
-        out.viscous_power.add(slot[1]);
+        if (subset.counts_energy[static_cast<size_t>(i)]) {
+            out.strain_energy.add(slot[0]);
+            out.viscous_power.add(slot[1]);
+        }
         if (slot[2] < out.min_jacobian) {
             out.min_jacobian = slot[2];
             out.min_jacobian_tri = static_cast<TriId>(slot[3]);

@@ -1,6 +1,8 @@
 // Constant-strain triangle with finite strain (docs/theory.md §3, spec §3.1).
 #pragma once
 
+#include <array>
+
 #include <limits>
 #include <vector>
 
@@ -39,10 +41,21 @@ ElementPass add_internal_forces(const Model& m, State& s);
 /// triangle's first node). Running these chunks adds to every owned node the forces of all its
 /// triangles in the serial order, so an owned node's force is bitwise the serial one; forces on
 /// the other nodes are partial and belong to their owners.
+///
+/// Within a chunk only the triangles of owned nodes are needed for the forces: `runs` lists them
+/// as ranges of consecutive ids (a node's force is the fold of its triangles' forces in triangle
+/// order, which skipping triangles without the node does not change). A chunk runs whole only
+/// where its sums are needed: the chunks the process counts, on steps that evaluate the strain
+/// energy or (viscous materials) the viscous power; and composite chunks always (the composite's
+/// pressure couples its sub-triangles). The smallest det F is taken over every triangle a
+/// process runs (each triangle is run by the owners of its nodes), keyed by (chunk, triangle).
 struct ElementSubset {
     std::vector<int32_t> chunks;         ///< schedule chunk ids, ascending
     std::vector<int32_t> color_begin;    ///< chunks of color c: [color_begin[c], color_begin[c+1])
     std::vector<uint8_t> counts_energy;  ///< per entry of chunks: 1 = this process sums it
+    /// per entry of chunks: its runs [run_begin[i], run_begin[i + 1]) of `runs`
+    std::vector<int32_t> run_begin;
+    std::vector<std::array<TriId, 2>> runs;  ///< [first, end) triangles of owned nodes
 };
 
 /// The subset of `rank` for an assignment of every node to a process (node_owner[n] in
@@ -62,8 +75,10 @@ struct ElementSubsetPass {
 };
 
 /// add_internal_forces(m, s) over the chunks of `subset` only: the same kernel, colors and
-/// per-chunk partial sums; energies and the smallest det F over the chunks it counts.
-ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSubset& subset);
+/// per-chunk partial sums; energies over the chunks it counts (whole when s.need_energy or
+/// `viscous_power`), the smallest det F over the triangles it runs.
+ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSubset& subset,
+                                      bool viscous_power = true);
 
 /// Cut the triangles of the non-fixed bodies into chunks and color them so that chunks of one
 /// color share no node (greedy, in chunk order). Depends only on the model, never on the thread

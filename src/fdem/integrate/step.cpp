@@ -269,7 +269,7 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         pass = add_internal_forces(m, s);
     } else {
         // owner computes (spec D7.1); energies as exact sums over the processes (theory §4.4)
-        const ElementSubsetPass sp = add_internal_forces(m, s, plan->elements);
+        const ElementSubsetPass sp = add_internal_forces(m, s, plan->elements, plan->viscous);
         // strain energy and viscous power: summed over the processes with the node update's
         // sums at the end of the step (one reduction)
         element_sums[0] = sp.strain_energy;

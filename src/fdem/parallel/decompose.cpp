@@ -26,8 +26,15 @@ PartCounts own_counts(const Model& m, const State& s, const StepPlan& p) {
     c.chunks_run = static_cast<int64_t>(es.chunks.size());
     for (size_t k = 0; k < es.chunks.size(); ++k) {
         const auto [b, e] = m.element_schedule.chunk_tris[static_cast<size_t>(es.chunks[k])];
-        c.tris_run += e - b;
         if (es.counts_energy[k]) c.tris_counted += e - b;
+        // a step without energies: the runs, and the counted chunks whole with viscous power
+        if (es.counts_energy[k] && p.viscous) {
+            c.tris_run += e - b;
+        } else {
+            for (int32_t r = es.run_begin[k]; r < es.run_begin[k + 1]; ++r)
+                c.tris_run +=
+                    es.runs[static_cast<size_t>(r)][1] - es.runs[static_cast<size_t>(r)][0];
+        }
     }
     const ContactTopology& ct = s.topology;
     const int32_t* owner = p.node_owner.data();

@@ -27,7 +27,8 @@ struct PartCounts {
     int32_t part = 0;
     int64_t nodes = 0;            ///< owned nodes (whole groups of kNodeGroup ids)
     int64_t tris_counted = 0;     ///< triangles of the element chunks whose energy it counts
-    int64_t tris_run = 0;         ///< triangles of every chunk it runs (owned + halo)
+    int64_t tris_run = 0;         ///< triangles it runs on a step without energies (of owned
+                                  ///< nodes; counted chunks whole with viscous materials)
     int64_t chunks_run = 0;       ///< element chunks it runs
     int64_t ghost_nodes = 0;      ///< nodes it receives every step
     int64_t send_nodes = 0;       ///< node copies it sends every step (summed over receivers)

@@ -14,14 +14,24 @@ namespace fdem {
 
 namespace {
 
-// the nodes of the element chunks the process runs and of every load, not owned (ascending)
+// the nodes of the triangles the process runs (the runs of its chunks; the chunks it counts
+// whole, as on energy steps) and of every load, not owned (ascending)
 std::vector<NodeId> static_need(const Model& m, const StepPlan& p) {
     std::vector<uint8_t> mark(static_cast<size_t>(m.num_nodes()), 0);
-    for (const int32_t ch : p.elements.chunks) {
-        const auto [b, e] = m.element_schedule.chunk_tris[static_cast<size_t>(ch)];
+    const ElementSubset& es = p.elements;
+    auto mark_tris = [&](TriId b, TriId e) {
         for (TriId t = b; t < e; ++t) {
             for (const NodeId i : m.tri_nodes[static_cast<size_t>(t)])
                 mark[static_cast<size_t>(i)] = 1;
+        }
+    };
+    for (size_t k = 0; k < es.chunks.size(); ++k) {
+        if (es.counts_energy[k]) {
+            const auto [b, e] = m.element_schedule.chunk_tris[static_cast<size_t>(es.chunks[k])];
+            mark_tris(b, e);
+        } else {
+            for (int32_t r = es.run_begin[k]; r < es.run_begin[k + 1]; ++r)
+                mark_tris(es.runs[static_cast<size_t>(r)][0], es.runs[static_cast<size_t>(r)][1]);
         }
     }
     for (const Load& ld : m.loads) {  // evaluated by every process (x, v of its nodes)
