@@ -531,8 +531,9 @@ int decompose_command(const DecomposeOptions& opt, const fdem::Comm* rcb_comm) {
     if (opt.threads > 0) omp_set_num_threads(opt.threads);
     if (opt.partition == "rcb" && rcb_comm == nullptr) {
         throw fdem::InputError({}, "--partition",
-                               "rcb needs Zoltan, which this fdem was built without (build with "
-                               "-DFDEM_MPI=ON, docs/parallel.md); use --partition ids or random");
+                               "--partition rcb needs Zoltan, which this fdem was built without "
+                               "(build with -DFDEM_MPI=ON, docs/parallel.md); use --partition ids "
+                               "or random");
     }
     const double end = opt.end_time;
     fdem::Simulation sim(std::move(sc));
@@ -606,8 +607,8 @@ int decompose_command(const DecomposeOptions& opt, const fdem::Comm* rcb_comm) {
         std::FILE* fp = std::fopen(opt.csv.c_str(), "w");
         if (fp == nullptr || std::fputs(csv.c_str(), fp) < 0 || std::fclose(fp) != 0) {
             throw fdem::InputError({}, "--csv",
-                                   fmt::format("cannot write \"{}\": {}; expected a writable "
-                                               "file path",
+                                   fmt::format("--csv: cannot write \"{}\": {}; expected a "
+                                               "writable file path",
                                                opt.csv, std::strerror(errno)));
         }
         fmt::print("csv        {} (one row per part)\n", opt.csv);

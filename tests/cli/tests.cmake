@@ -137,3 +137,26 @@ add_test(NAME cli.run_prints_contact_pairs
                  ${cli_out}/contact_pairs)
 set_tests_properties(cli.run_prints_contact_pairs PROPERTIES LABELS input
                      PASS_REGULAR_EXPRESSION "OK: contact pairs line")
+# fdem decompose (issue #15, docs/parallel.md): bad arguments exit 2 naming the option and the
+# value; a run prints one summary line per part count and writes the CSV
+add_test(NAME cli.decompose_zero_parts_exits_2
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=2
+                 "-DARGS=decompose;${cli_dir}/crush.toml;--parts;2,0"
+                 "-DREGEX=--parts: Value 0 not in range 1 to 1048576"
+                 -P ${cli_dir}/expect_exit.cmake)
+add_test(NAME cli.decompose_unknown_partition_exits_2
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=2
+                 "-DARGS=decompose;${cli_dir}/crush.toml;--parts;2;--partition;metis"
+                 "-DREGEX=--partition: metis not in \\{rcb,ids,random\\}"
+                 -P ${cli_dir}/expect_exit.cmake)
+add_test(NAME cli.decompose_unwritable_csv_exits_2
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=2
+                 "-DARGS=decompose;${cli_dir}/crush.toml;--parts;2;--partition;ids;--csv;/no_such_dir/x.csv"
+                 "-DREGEX=--csv.*cannot write \"/no_such_dir/x.csv\": No such file or directory; expected a writable file path"
+                 -P ${cli_dir}/expect_exit.cmake)
+add_test(NAME cli.decompose_prints_parts
+         COMMAND fdem_cli decompose ${cli_dir}/crush.toml --parts 1,3 --partition ids)
+set_tests_properties(cli.decompose_prints_parts PROPERTIES PASS_REGULAR_EXPRESSION
+  "parts     1 \\(ids.*\nparts     3 \\(ids, [0-9.]+ s\\): nodes per part [0-9]+ mean")
+set_tests_properties(cli.decompose_zero_parts_exits_2 cli.decompose_unknown_partition_exits_2
+  cli.decompose_unwritable_csv_exits_2 cli.decompose_prints_parts PROPERTIES LABELS input)

@@ -15,6 +15,13 @@ if(NOT FDEM_MPI)
                    "-DREGEX=error: this fdem was started as one of 3 MPI processes, but it was built without MPI"
                    -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_exit.cmake)
   set_tests_properties(cli.refuses_mpi_launch_exits_2 PROPERTIES LABELS input)
+  # fdem decompose's default partition is Zoltan's RCB, which this build does not have
+  add_test(NAME cli.decompose_rcb_without_mpi_exits_2
+           COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=2
+                   "-DARGS=decompose;${PROJECT_SOURCE_DIR}/examples/03_contact_slide/scenario.toml;--parts;2"
+                   "-DREGEX=--partition rcb needs Zoltan, which this fdem was built without"
+                   -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_exit.cmake)
+  set_tests_properties(cli.decompose_rcb_without_mpi_exits_2 PROPERTIES LABELS input)
   return()
 endif()
 

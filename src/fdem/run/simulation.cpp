@@ -97,8 +97,8 @@ struct Simulation::Impl {
     // restart continues history.csv instead of truncating it.
     void ensure_writers() {
         if (out_dir.empty() || writers_open) return;
-        writers_open = true;
         on_writer([&] { open_writers(); });
+        writers_open = true;  // (not after an error: the next run tries again, as before)
     }
 
     void open_writers() {
