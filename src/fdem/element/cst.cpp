@@ -191,15 +191,15 @@ void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId
 }
 
 // The element chunks of each color c, entries [color_begin[c], color_begin[c+1]) one color after
-// the other (implicit barrier at the end of each omp for); entry i is schedule chunk chunk_of(i)
-// and leaves its partials in the returned array at kChunkSlots * i (strain energy, viscous power,
-// smallest det F, its triangle). The chunks of a color touch disjoint nodes, so their scatter
-// needs no atomics; dynamic scheduling only changes which thread runs a chunk, never the order in
-// which a node is updated. Uses s.scratch_sums (sized on first use).
-template <class ChunkOf>
-const Real* run_chunks(const Model& m, State& s, const int32_t* color_begin, int32_t ncolors,
-                       int32_t n, ChunkOf chunk_of) {
-    const ElementSchedule& sc = m.element_schedule;
+// the other (implicit barrier at the end of each omp for); run_entry(i, x, v, f, with_energy, p)
+// runs entry i (material_range() over its triangles) and it leaves its partials in the returned
+// array at kChunkSlots * i (strain energy, viscous power, smallest det F, its triangle). The
+// chunks of a color touch disjoint nodes, so their scatter needs no atomics; dynamic scheduling
+// only changes which thread runs a chunk, never the order in which a node is updated. Uses
+// s.scratch_sums (sized on first use).
+template <class RunEntry>
+const Real* run_chunks(State& s, const int32_t* color_begin, int32_t ncolors, int32_t n,
+                       RunEntry run_entry) {
     if (s.scratch_sums.size() < kChunkSlots * static_cast<size_t>(n)) {
         s.scratch_sums.resize(kChunkSlots * static_cast<size_t>(n));  // first call only
     }
@@ -212,9 +212,8 @@ const Real* run_chunks(const Model& m, State& s, const int32_t* color_begin, int
     for (int32_t c = 0; c < ncolors; ++c) {
 #pragma omp for schedule(dynamic, 1)
         for (int32_t i = color_begin[c]; i < color_begin[c + 1]; ++i) {
-            const int32_t k = chunk_of(i);
             ElementPass p;
-            material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy, p);
+            run_entry(i, x, v, f, with_energy, p);
             Real* slot = part + kChunkSlots * static_cast<size_t>(i);
             slot[0] = p.strain_energy;
             slot[1] = p.viscous_power;
@@ -259,8 +258,11 @@ ElementPass add_internal_forces(const Model& m, State& s) {
     const ElementSchedule& sc = m.element_schedule;
     const int32_t nc = sc.num_chunks();
     const int32_t ncolors = static_cast<int32_t>(sc.color_begin.size()) - 1;
-    const Real* part =
-        run_chunks(m, s, sc.color_begin.data(), ncolors, nc, [](int32_t k) { return k; });
+    const Real* part = run_chunks(
+        s, sc.color_begin.data(), ncolors, nc,
+        [&](int32_t k, const Vec2* x, const Vec2* v, Vec2* f, bool with_energy, ElementPass& p) {
+            material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy, p);
+        });
 
     // the chunk partials combined exactly (theory §4.4): the same sums whatever the thread count
     // or grouping of the chunks; the smallest det F in chunk order (the first of equal ones)
@@ -321,39 +323,23 @@ ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSub
     const ElementSchedule& sc = m.element_schedule;
     const int32_t nk = static_cast<int32_t>(subset.chunks.size());
     const int32_t ncolors = static_cast<int32_t>(subset.color_begin.size()) - 1;
-    if (s.scratch_sums.size() < kChunkSlots * static_cast<size_t>(nk)) {
-        s.scratch_sums.resize(kChunkSlots * static_cast<size_t>(nk));  // first call only
-    }
-    Real* part = s.scratch_sums.data();
-    const Vec2* x = s.x.data();
-    const Vec2* v = s.v.data();
-    Vec2* f = s.f.data();
-    const bool with_energy = s.need_energy;
-    // the counted chunks whole where their sums are read (run_chunks() for the colors and
-    // scheduling; the runs of a chunk in triangle order: the fold of each node unchanged)
-    const bool whole_counted = with_energy || viscous_power;
-#pragma omp parallel if (nk >= kMinParallelChunks)
-    for (int32_t c = 0; c < ncolors; ++c) {
-#pragma omp for schedule(dynamic, 1)
-        for (int32_t i = subset.color_begin[c]; i < subset.color_begin[c + 1]; ++i) {
+    // the counted chunks whole where their sums are read; otherwise the runs of a chunk in
+    // triangle order (the fold of each owned node unchanged)
+    const bool whole_counted = s.need_energy || viscous_power;
+    const Real* part = run_chunks(
+        s, subset.color_begin.data(), ncolors, nk,
+        [&](int32_t i, const Vec2* x, const Vec2* v, Vec2* f, bool with_energy, ElementPass& p) {
             const int32_t k = subset.chunks[static_cast<size_t>(i)];
-            ElementPass p;
             if (whole_counted && subset.counts_energy[static_cast<size_t>(i)]) {
                 material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy,
                                p);
-            } else {
-                for (int32_t r = subset.run_begin[i]; r < subset.run_begin[i + 1]; ++r) {
-                    const auto& run = subset.runs[static_cast<size_t>(r)];
-                    material_range(m, x, v, f, run[0], run[1], with_energy, p);
-                }
+                return;
             }
-            Real* slot = part + kChunkSlots * static_cast<size_t>(i);
-            slot[0] = p.strain_energy;
-            slot[1] = p.viscous_power;
-            slot[2] = p.min_jacobian;
-            slot[3] = static_cast<Real>(p.min_jacobian_tri);
-        }
-    }
+            for (int32_t r = subset.run_begin[i]; r < subset.run_begin[i + 1]; ++r) {
+                const auto& run = subset.runs[static_cast<size_t>(r)];
+                material_range(m, x, v, f, run[0], run[1], with_energy, p);
+            }
+        });
     // the counted chunks' partials, exactly (theory §4.4); the smallest det F over every
     // triangle run, the first in (chunk, triangle) order: over the processes the serial one
     ElementSubsetPass out;
