@@ -619,20 +619,19 @@ StepPlan make_part_plan(const Model& m, int32_t rank, int32_t procs,
     return p;
 }
 
-StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
-                        std::span<const int32_t> group_owner) {
+std::vector<int32_t> node_owners(const Model& m, int32_t procs,
+                                 std::span<const int32_t> group_owner) {
     const NodeId nn = m.num_nodes();
     const NodeId groups = (nn + kNodeGroup - 1) / kNodeGroup;
     std::vector<int32_t> owner_of_group(static_cast<size_t>(groups), 0);
     if (!group_owner.empty()) {
         if (group_owner.size() != static_cast<size_t>(groups)) {
             throw std::invalid_argument(
-                "make_step_plan: group_owner must have one entry per node group");
+                "node_owners: group_owner must have one entry per node group");
         }
         for (NodeId g = 0; g < groups; ++g) {
             const int32_t o = group_owner[static_cast<size_t>(g)];
-            if (o < 0 || o >= procs)
-                throw std::invalid_argument("make_step_plan: owner out of range");
+            if (o < 0 || o >= procs) throw std::invalid_argument("node_owners: owner out of range");
             owner_of_group[static_cast<size_t>(g)] = o;
         }
     } else {
@@ -646,7 +645,13 @@ StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
     std::vector<int32_t> node_owner(static_cast<size_t>(nn), 0);
     for (NodeId i = 0; i < nn; ++i)
         node_owner[static_cast<size_t>(i)] = owner_of_group[static_cast<size_t>(i / kNodeGroup)];
-    StepPlan p = make_part_plan(m, rank, procs, std::move(node_owner));
+    return node_owner;
+}
+
+StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
+                        std::span<const int32_t> group_owner) {
+    const NodeId nn = m.num_nodes();
+    StepPlan p = make_part_plan(m, rank, procs, node_owners(m, procs, group_owner));
     // the all-gather layout: node ids by (owner, id), one counting pass and one placing pass
     p.node_counts.assign(static_cast<size_t>(procs), 0);
     p.node_displs.assign(static_cast<size_t>(procs), 0);

@@ -16,7 +16,8 @@ namespace {
 
 constexpr int64_t kGhostBytes = 4 * sizeof(double);  // x and v of a node (exchange_ghosts())
 
-// the counts that depend only on the plan's own lists (not on what others need from it)
+// the counts that depend only on the plan's own lists (with ghost lists, the send side is
+// what the others need from it: filled by the callers)
 PartCounts own_counts(const Model& m, const State& s, const StepPlan& p) {
     PartCounts c;
     c.part = p.rank;
@@ -57,6 +58,8 @@ PartCounts own_counts(const Model& m, const State& s, const StepPlan& p) {
         // no ghost lists (joints, baseline A): x and v of every node all-gathered every step
         c.ghost_nodes = m.num_nodes() - c.nodes;
         c.recv_from = p.procs - 1;
+        c.send_nodes = c.nodes * (p.procs - 1);
+        c.send_to = p.procs - 1;
     }
     return c;
 }
@@ -77,9 +80,6 @@ PartCounts part_counts(const Model& m, const State& s, const StepPlan& p) {
             c.send_nodes += n;
             c.send_to += n > 0;
         }
-    } else if (p.procs > 1) {
-        c.send_nodes = c.nodes * (p.procs - 1);
-        c.send_to = p.procs - 1;
     }
     return c;
 }
@@ -96,17 +96,7 @@ std::vector<PartCounts> decompose(const Model& m, const State& s,
     std::vector<Flow> flows;
     // a plan per part (O(nodes + triangles) each: ~10^3 parts of 10^7 triangles in minutes),
     // the node owners handed from one to the next
-    std::vector<int32_t> node_owner(static_cast<size_t>(m.num_nodes()));
-    {
-        const int32_t groups = (m.num_nodes() + kNodeGroup - 1) / kNodeGroup;
-        if (group_owner.size() != static_cast<size_t>(groups))
-            throw std::invalid_argument("decompose: group_owner must have one entry per group");
-        for (size_t i = 0; i < node_owner.size(); ++i) {
-            const int32_t o = group_owner[i / kNodeGroup];
-            if (o < 0 || o >= parts) throw std::invalid_argument("decompose: owner out of range");
-            node_owner[i] = o;
-        }
-    }
+    std::vector<int32_t> node_owner = node_owners(m, parts, group_owner);
     for (int32_t r = 0; r < parts; ++r) {
         StepPlan p = make_part_plan(m, r, parts, std::move(node_owner));
         if (p.ghosts.active) ghost_receive_lists(m, s, p);
@@ -116,10 +106,6 @@ std::vector<PartCounts> decompose(const Model& m, const State& s,
                 const int n = p.ghosts.recv_counts[static_cast<size_t>(q)] / 4;
                 if (n > 0) flows.push_back({q, r, n});
             }
-        } else if (parts > 1) {
-            PartCounts& c = out[static_cast<size_t>(r)];
-            c.send_nodes = c.nodes * (parts - 1);
-            c.send_to = parts - 1;
         }
         node_owner = std::move(p.node_owner);
     }

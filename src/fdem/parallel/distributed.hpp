@@ -110,6 +110,12 @@ void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<do
 StepPlan make_step_plan(const Model& m, int32_t rank, int32_t procs,
                         std::span<const int32_t> group_owner = {});
 
+/// The process of every node from the process of every node group (values in [0, procs));
+/// empty: contiguous ranges of about the same number of groups each. Throws
+/// std::invalid_argument for a wrong length or an owner out of range.
+std::vector<int32_t> node_owners(const Model& m, int32_t procs,
+                                 std::span<const int32_t> group_owner);
+
 /// The part of make_step_plan() that does not need the all-gather layout (no gather_order,
 /// node_counts, gather_buffer): the owned runs, the element subset, the ghosts' static need
 /// and the support slots of process `rank`, for node_owner[n] in [0, procs) constant on every
