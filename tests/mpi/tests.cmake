@@ -84,6 +84,22 @@ foreach(part "random:4" "ids:3")
   set_tests_properties(mpi.same_as_serial.partition_${how} PROPERTIES LABELS mpi TIMEOUT 300
                        PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
 endforeach()
+# D12 with the local broad phase: each process holds its own targets' candidate pairs, and the
+# checkpoint of a distributed run is still byte for byte the serial one (the lists gathered)
+foreach(case "04_particles:1e-3:4e-4:2 3 4" "08_brazilian_disc:4e-6:2e-6:3")
+  string(REPLACE ":" ";" case "${case}")
+  list(GET case 0 name)
+  list(GET case 1 end)
+  list(GET case 2 every)
+  list(GET case 3 nps)
+  add_test(NAME mpi.same_checkpoint.${name}
+           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                   ${mpi_dir}/same_checkpoint.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                   ${ex}/${name}/scenario.toml ${mpi_out}/checkpoint_${name} "${nps}" ${end}
+                   ${every})
+  set_tests_properties(mpi.same_checkpoint.${name} PROPERTIES LABELS mpi TIMEOUT 300
+                       PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: the serial checkpoint")
+endforeach()
 # D13: [output] merge = true: process 0 writes the serial .vtu frames instead of .pvtu pieces
 add_test(NAME mpi.same_as_serial.merged_frames
          COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}

@@ -841,7 +841,14 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             gather_nodes(s.v.data(), *plan, *comm);
             update_virtual_nodes(m, s);
         }
-        find_candidates(m, ct, x, xc, xv, cs.cand, cs.broad);
+        if (plan != nullptr) {
+            // this process's targets only (a subsequence of the serial list, spec D5.3)
+            find_candidates(m, ct, x, xc, xv, cs.cand, cs.broad,
+                            TargetOwner{plan->node_owner.data(), plan->rank});
+            share->total_candidates = comm->sum(static_cast<int64_t>(cs.cand.node.size()));
+        } else {
+            find_candidates(m, ct, x, xc, xv, cs.cand, cs.broad);
+        }
         if (share != nullptr) share->boxes_valid = false;
         if (ghosts) rebuild_ghosts(m, s, *plan, *comm);
         cs.need_rebuild = false;
@@ -938,9 +945,10 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         span_count[ch] = chunk_count[ch];
     }
     if (share != nullptr) {
-        // records (pair index, result), each process's in pair order; the gathered ones are
-        // put in pair order by share->order
+        // records (target node, contactor body, result), each process's in pair order; the
+        // gathered ones are put in (node, body) order, the serial pair order, by share->order
         constexpr size_t kRec = kContactRecordBytes;
+        constexpr size_t kKey = sizeof(NodeId) + sizeof(BodyId);
         static_assert(std::is_trivially_copyable_v<PairResult>);
         std::vector<char>& send = share->send;
         size_t n_mine = 0;
@@ -950,17 +958,28 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         char* w = send.data();
         for (int32_t ch = 0; ch < kPairChunks; ++ch) {
             for (int32_t k = span_begin[ch]; k < span_begin[ch] + chunk_count[ch]; ++k) {
-                std::memcpy(w, &in_contact[k], sizeof(int32_t));
-                std::memcpy(w + sizeof(int32_t), &out[k], sizeof(PairResult));
+                const int32_t pr = in_contact[k];
+                std::memcpy(w, &cs.cand.node[static_cast<size_t>(pr)], sizeof(NodeId));
+                std::memcpy(w + sizeof(NodeId), &cs.cand.body[static_cast<size_t>(pr)],
+                            sizeof(BodyId));
+                std::memcpy(w + kKey, &out[k], sizeof(PairResult));
                 w += kRec;
             }
         }
         comm->allgather_bytes(send, share->recv);
         const size_t n_all = share->recv.size() / kRec;
+        // (every process's pairs in contact: more than this process's candidates; grow only)
+        if (cs.pair_out.size() < n_all) cs.pair_out.resize(n_all);
+        out = cs.pair_out.data();
+        share->rec_node.resize(n_all);
+        share->rec_body.resize(n_all);
+        NodeId* rnode = share->rec_node.data();
+        BodyId* rbody = share->rec_body.data();
         const char* r = share->recv.data();
         for (size_t k = 0; k < n_all; ++k, r += kRec) {
-            std::memcpy(&in_contact[k], r, sizeof(int32_t));
-            std::memcpy(&out[k], r + sizeof(int32_t), sizeof(PairResult));
+            std::memcpy(&rnode[k], r, sizeof(NodeId));
+            std::memcpy(&rbody[k], r + sizeof(NodeId), sizeof(BodyId));
+            std::memcpy(&out[k], r + kKey, sizeof(PairResult));
         }
         nspans = 1;
         span_begin[0] = 0;
@@ -969,10 +988,20 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         order.resize(n_all);
         for (size_t k = 0; k < n_all; ++k)
             order[k] = static_cast<int32_t>(k);
-        std::sort(order.begin(), order.end(),
-                  [in_contact](int32_t a, int32_t b) { return in_contact[a] < in_contact[b]; });
+        std::sort(order.begin(), order.end(), [rnode, rbody](int32_t a, int32_t b) {
+            return rnode[a] != rnode[b] ? rnode[a] < rnode[b] : rbody[a] < rbody[b];
+        });
     }
     const int32_t* perm = share != nullptr ? share->order.data() : nullptr;
+    // the key (node, body) of the k-th pair in contact: a gathered record's, or the candidate's
+    const NodeId* rec_node = share != nullptr ? share->rec_node.data() : nullptr;
+    const BodyId* rec_body = share != nullptr ? share->rec_body.data() : nullptr;
+    auto key_node = [&](int32_t k) {
+        return rec_node != nullptr ? rec_node[k] : cs.cand.node[static_cast<size_t>(in_contact[k])];
+    };
+    auto key_body = [&](int32_t k) {
+        return rec_body != nullptr ? rec_body[k] : cs.cand.body[static_cast<size_t>(in_contact[k])];
+    };
     if (ghosts) {
         // the lost-contact test of a released pair (below) reads the contactor's boundary and
         // the target: all-gather x first if any pair it tests is released this step (the same
@@ -980,9 +1009,8 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         bool test = false;
         size_t a = 0;
         for (int32_t idx = 0; idx < span_count[0] && !test; ++idx) {
-            const int32_t pr = in_contact[perm[idx]];
-            const NodeId j = cs.cand.node[pr];
-            const BodyId c = cs.cand.body[pr];
+            const NodeId j = key_node(perm[idx]);
+            const BodyId c = key_body(perm[idx]);
             for (; a < cs.active.size() && pair_below(cs.active[a], j, c); ++a)
                 test = test || lost_test_needed(m, ct, cs.active[a]);
             if (a < cs.active.size() && cs.active[a].node == j && cs.active[a].body == c) ++a;
@@ -1039,9 +1067,8 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         const int32_t b = span_begin[sp];
         for (int32_t idx = b; idx < b + span_count[sp]; ++idx) {
             const int32_t k = perm != nullptr ? perm[idx] : idx;
-            const int32_t pr = in_contact[k];
-            const NodeId j = cs.cand.node[pr];
-            const BodyId c = cs.cand.body[pr];
+            const NodeId j = key_node(k);
+            const BodyId c = key_body(k);
             while (ia < cs.active.size() && pair_below(cs.active[ia], j, c))
                 release(cs.active[ia++]);
             if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) ++ia;
@@ -1094,6 +1121,75 @@ Real max_speed2(const Vec2* v, std::span<const std::pair<NodeId, NodeId>> runs) 
             v2s[0] = std::max(v2s[0], norm2(v[i]));
     }
     return std::max(std::max(v2s[0], v2s[1]), std::max(v2s[2], v2s[3]));
+}
+
+void gather_candidates(State& s, const StepPlan& plan, const Comm& comm) {
+    Candidates& cand = s.contact.cand;
+    const ContactTopology& ct = s.topology;
+    // the pairs of my targets only (after a first gather a process holds every pair), as
+    // [pairs][tris][node...][body...][count per pair...][tri...] (int32 words)
+    std::vector<size_t> mine_pairs;
+    size_t nt = 0;
+    for (size_t p = 0; p < cand.node.size(); ++p) {
+        if (plan.node_owner[static_cast<size_t>(target_node(ct, cand.node[p]))] != plan.rank)
+            continue;
+        mine_pairs.push_back(p);
+        nt += static_cast<size_t>(cand.begin[p + 1] - cand.begin[p]);
+    }
+    const size_t np = mine_pairs.size();
+    std::vector<int32_t> words;
+    words.reserve(2 + 3 * np + nt);
+    words.push_back(static_cast<int32_t>(np));
+    words.push_back(static_cast<int32_t>(nt));
+    for (const size_t p : mine_pairs)
+        words.push_back(cand.node[p]);
+    for (const size_t p : mine_pairs)
+        words.push_back(cand.body[p]);
+    for (const size_t p : mine_pairs)
+        words.push_back(cand.begin[p + 1] - cand.begin[p]);
+    for (const size_t p : mine_pairs)
+        words.insert(words.end(), cand.tri.begin() + cand.begin[p],
+                     cand.tri.begin() + cand.begin[p + 1]);
+    std::vector<char> mine(words.size() * sizeof(int32_t)), all;
+    std::memcpy(mine.data(), words.data(), mine.size());
+    comm.allgather_bytes(mine, all);
+    std::vector<int32_t> w(all.size() / sizeof(int32_t));
+    std::memcpy(w.data(), all.data(), w.size() * sizeof(int32_t));
+    // every pair as (node, body, first tri in w, count), then in (node, body) order: the
+    // processes' targets are disjoint, so this is the serial list
+    struct Ref {
+        NodeId node;
+        BodyId body;
+        size_t tri;
+        int32_t count;
+    };
+    std::vector<Ref> refs;
+    for (size_t at = 0; at < w.size();) {
+        const size_t p_n = static_cast<size_t>(w[at]), t_n = static_cast<size_t>(w[at + 1]);
+        const size_t nodes = at + 2, bodies = nodes + p_n, counts = bodies + p_n,
+                     tris = counts + p_n;
+        size_t t = tris;
+        for (size_t p = 0; p < p_n; ++p) {
+            refs.push_back(Ref{w[nodes + p], w[bodies + p], t, w[counts + p]});
+            t += static_cast<size_t>(w[counts + p]);
+        }
+        at = tris + t_n;
+    }
+    std::sort(refs.begin(), refs.end(), [](const Ref& a, const Ref& b) {
+        return a.node != b.node ? a.node < b.node : a.body < b.body;
+    });
+    cand.node.clear();
+    cand.body.clear();
+    cand.begin.assign(1, 0);
+    cand.tri.clear();
+    for (const Ref& r : refs) {
+        cand.node.push_back(r.node);
+        cand.body.push_back(r.body);
+        cand.tri.insert(cand.tri.end(), w.begin() + static_cast<std::ptrdiff_t>(r.tri),
+                        w.begin() + static_cast<std::ptrdiff_t>(r.tri) + r.count);
+        cand.begin.push_back(static_cast<int32_t>(cand.tri.size()));
+    }
+    plan.contact.total_candidates = static_cast<int64_t>(cand.node.size());
 }
 
 const std::vector<BodyId>& contactor_bodies(const Model& m, const State& s, const StepPlan& plan) {

@@ -35,14 +35,22 @@ void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> 
 /// update pair history, contact energy and contact dissipation in s.energy / s.contact.
 void add_contact_forces(const Model& m, State& s);
 
-/// Bytes of one pair-in-contact record of a distributed run (pair index, PairResult): every
-/// process all-gathers those of its targets every step (add_contact_forces() with a plan).
-inline constexpr size_t kContactRecordBytes = sizeof(int32_t) + sizeof(PairResult);
+/// Bytes of one pair-in-contact record of a distributed run (target node, contactor body,
+/// PairResult): every process all-gathers those of its targets every step (add_contact_forces()
+/// with a plan). Keyed by (node, body), the order of the serial pair loop, not by an index into
+/// a candidate list: each process holds only its own targets' candidates.
+inline constexpr size_t kContactRecordBytes = sizeof(NodeId) + sizeof(BodyId) + sizeof(PairResult);
 
 /// Scratch of a process's share of the narrow phase in a distributed run (StepPlan::contact).
 struct ContactShare {
     mutable std::vector<char> send, recv;  ///< the exchange of the pairs in contact (grow only)
     mutable std::vector<int32_t> order;    ///< the gathered pairs in pair order
+    /// the gathered records' keys (target node, contactor body), in the order received
+    mutable std::vector<NodeId> rec_node;
+    mutable std::vector<BodyId> rec_body;
+    /// candidate pairs of every process at the last broad phase (the serial list's length; a
+    /// process holds only its own targets' pairs)
+    mutable int64_t total_candidates = 0;
     /// the contactors of the process's candidate pairs: the only body boxes it computes
     mutable std::vector<BodyId> box_bodies;
     mutable std::vector<uint8_t> body_mark;
@@ -57,13 +65,21 @@ struct StepPlan;  // parallel/distributed.hpp
 Real max_speed2(const Vec2* v, std::span<const std::pair<NodeId, NodeId>> runs);
 
 /// add_contact_forces() as one process of a distributed run (issue #15, docs/parallel.md): the
-/// process evaluates the candidate pairs whose target it owns (its real node, or the first end
-/// node of an edge target: spec D5.3; narrow phase and law, the expensive part), the pairs in
-/// contact are all-gathered and put in pair order, and every process applies all of them as the
-/// serial loop does: the same f, f_contact, histories and energies on every process, bitwise
-/// the serial ones. The skin trigger is the maximum over the processes' own nodes; a broad-phase
-/// rebuild all-gathers x and v first and rebuilds the ghost lists (plan.ghosts). Collective.
+/// process's broad phase queries only the targets it owns (its real node, or the first end
+/// node of an edge target: spec D5.3), so s.contact.cand holds their pairs only (a subsequence
+/// of the serial list); it evaluates them (narrow phase and law, the expensive part), the pairs
+/// in contact are all-gathered as records keyed by (node, body) and put in that order, and
+/// every process applies all of them as the serial loop does: the same f, f_contact, histories
+/// and energies on every process, bitwise the serial ones. The skin trigger is the maximum over
+/// the processes' own nodes; a broad-phase rebuild all-gathers x and v first and rebuilds the
+/// ghost lists (plan.ghosts). Collective.
 void add_contact_forces(const Model& m, State& s, const StepPlan& plan, const Comm& comm);
+
+/// Replace every process's own candidate list by the serial one (all of them merged in (node,
+/// body) order), e.g. before a checkpoint is written: the file holds the serial list whatever
+/// the process count. The filters by target owner keep a distributed step correct on it.
+/// Collective; allocates.
+void gather_candidates(State& s, const StepPlan& plan, const Comm& comm);
 
 /// The contactor bodies of plan's process's candidate pairs (those of its targets), ascending:
 /// the only body boxes it computes and the bodies whose every node it reads (its ghosts). Listed

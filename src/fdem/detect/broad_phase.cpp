@@ -70,6 +70,12 @@ void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, c
 
 void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, const Vec2* xc,
                      const Vec2* xv, Candidates& out, BroadPhaseScratch& g, BroadKernel kernel) {
+    find_candidates(m, ct, x, xc, xv, out, g, TargetOwner{}, kernel);
+}
+
+void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, const Vec2* xc,
+                     const Vec2* xv, Candidates& out, BroadPhaseScratch& g, TargetOwner own,
+                     BroadKernel kernel) {
     const ContactModel& cm = m.contact;
     const Real b = cm.buffer;
     const int32_t nt = ct.num_sub_tris();
@@ -140,10 +146,20 @@ void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, c
         detail::sort_hits(hits, nh);
         if (nh > 0) detail::emit(ct, j, hits, nh, w);
     };
-    for (NodeId j : ct.boundary_nodes)
-        query(j);
-    for (NodeId j = ct.edge_target_base; j < ct.target_end(); ++j)
-        query(j);
+    if (own.owner == nullptr) {
+        for (NodeId j : ct.boundary_nodes)
+            query(j);
+        for (NodeId j = ct.edge_target_base; j < ct.target_end(); ++j)
+            query(j);
+    } else {
+        // (a distributed run: this process's targets only, same order)
+        for (NodeId j : ct.boundary_nodes) {
+            if (own.owner[j] == own.rank) query(j);
+        }
+        for (NodeId j = ct.edge_target_base; j < ct.target_end(); ++j) {
+            if (own.owner[target_node(ct, j)] == own.rank) query(j);
+        }
+    }
     w.finish();
 }
 

@@ -30,6 +30,22 @@ void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, c
                      const Vec2* xv, Candidates& out, BroadPhaseScratch& g,
                      BroadKernel kernel = BroadKernel::Auto);
 
+/// The targets of one process of a distributed run (spec D5.3: a pair belongs to the owner of
+/// its target node; an edge target's node is its first end node, target_node()): target j is
+/// queried when owner[target_node(ct, j)] == rank. owner = nullptr: every target.
+struct TargetOwner {
+    const int32_t* owner = nullptr;
+    int32_t rank = 0;
+};
+
+/// find_candidates for the targets own selects only: the subsequence of the full list made of
+/// those targets' pairs (each target's pairs depend on the positions only, never on the other
+/// targets), so a process's pairs are the serial ones. The grid is still built over every
+/// sub-triangle (they need current positions: the caller gathers x first).
+void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, const Vec2* xc,
+                     const Vec2* xv, Candidates& out, BroadPhaseScratch& g, TargetOwner own,
+                     BroadKernel kernel = BroadKernel::Auto);
+
 /// O(N_nodes * N_tris) reference implementation of find_candidates (tests, T11).
 void find_candidates_brute_force(const Model& m, const ContactTopology& ct, const Vec2* x,
                                  const Vec2* xv, Candidates& out, BroadPhaseScratch& g);

@@ -216,7 +216,11 @@ void put_state(Sink& o, const State& s) {
     put(o, c.broad.tri_cell);
     put(o, c.broad.cell_start);
     put(o, c.broad.cell_items);
-    put(o, c.broad.query);  // in_contact: narrow-phase scratch (not saved)
+    // query: the grid's fill cursor, then the hit list of the last target queried: scratch,
+    // and in a distributed run the last target is each process's own; zeros of its size, so
+    // that the file is the same for every process count. (in_contact: narrow-phase scratch,
+    // not saved.)
+    put(o, std::vector<int32_t>(c.broad.query.size(), 0));
     put(o, c.active);
     put(o, c.active_next);
     put(o, c.xv);

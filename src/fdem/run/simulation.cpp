@@ -188,13 +188,19 @@ struct Simulation::Impl {
     /// a distributed step leaves f, and with ghosts x and v, complete only on the nodes a
     /// process owns or reads (step_distributed()): gather them before they are written.
     /// Collective.
-    void complete_state() {
+    /// checkpoint: also the candidate pairs, of which each process holds its own targets'
+    /// (the file holds the serial list).
+    void complete_state(bool checkpoint = false) {
         if (!plan) return;
         if (plan->ghosts.active) {
             gather_nodes(state.x.data(), *plan, *comm);
             gather_nodes(state.v.data(), *plan, *comm);
         }
         gather_forces(state, *plan, *comm);
+        const ContactAlgorithm a = model.contact.algorithm;
+        if (checkpoint && a != ContactAlgorithm::None && a != ContactAlgorithm::LegacyTriangle) {
+            gather_candidates(state, *plan, *comm);
+        }
     }
 
     /// a distributed frame as pieces (spec D13) rather than one file by process 0
@@ -262,7 +268,7 @@ struct Simulation::Impl {
     }
 
     void write_checkpoint_file(const std::string& path) {
-        complete_state();
+        complete_state(true);
         on_writer([&] {
             write_checkpoint(path, model, state, prog);
             last_checkpoint = {path, state.step, state.time};
@@ -576,7 +582,9 @@ Simulation::ContactCounts Simulation::contact_counts() const {
         c.broad_phase_runs = cs.legacy.rebuilds;
         c.triangle_couples = true;
     } else {
-        c.candidates = static_cast<int64_t>(cs.cand.node.size());
+        // (a distributed run: each process holds its own targets' pairs; the total is kept)
+        c.candidates = impl_->plan ? impl_->plan->contact.total_candidates
+                                   : static_cast<int64_t>(cs.cand.node.size());
         c.broad_phase_runs = cs.rebuilds;
     }
     return c;

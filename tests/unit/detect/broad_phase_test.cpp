@@ -63,6 +63,55 @@ TEST(BroadPhase, EqualsBruteForceOnRandomLayouts) {
     EXPECT_GT(total, 1000u);
 }
 
+// A distributed run's local broad phase (spec D5.3): with the targets of one process only
+// (TargetOwner), the list is exactly the full list's pairs of those targets, in the same order,
+// with the same sub-triangles, on both inner loops; the processes' lists together are the full
+// list. Random owners per node (edge targets go with their first end node).
+TEST(BroadPhase, OwnTargetsGiveTheFullListsPairsOfThoseTargets) {
+    std::mt19937 rng(99);
+    size_t edge_pairs = 0;
+    for (int layout = 0; layout < 20; ++layout) {
+        const Model m = random_layout(rng, 300, 15.0, layout % 2 == 0);
+        State s = make_state(m, 1e-6);
+        update_virtual_nodes(m, s);
+        const ContactTopology& ct = s.topology;
+        ContactState full = s.contact;
+        find_candidates(m, ct, s.x.data(), s.contact.xv.data(), full.cand, full.broad);
+        constexpr int kProcs = 3;
+        std::uniform_int_distribution<int32_t> up(0, kProcs - 1);
+        std::vector<int32_t> owner(static_cast<size_t>(m.num_nodes()));
+        for (int32_t& o : owner)
+            o = up(rng);
+        size_t pairs = 0;
+        for (int32_t rank = 0; rank < kProcs; ++rank) {
+            for (const BroadKernel kernel : {BroadKernel::Auto, BroadKernel::Scalar}) {
+                ContactState mine = s.contact;
+                find_candidates(m, ct, s.x.data(), s.x.data(), s.contact.xv.data(), mine.cand,
+                                mine.broad, TargetOwner{owner.data(), rank}, kernel);
+                Candidates want;
+                want.begin.push_back(0);
+                for (size_t p = 0; p < full.cand.node.size(); ++p) {
+                    const NodeId j = full.cand.node[p];
+                    if (owner[static_cast<size_t>(target_node(ct, j))] != rank) continue;
+                    want.node.push_back(j);
+                    want.body.push_back(full.cand.body[p]);
+                    for (int32_t k = full.cand.begin[p]; k < full.cand.begin[p + 1]; ++k)
+                        want.tri.push_back(full.cand.tri[static_cast<size_t>(k)]);
+                    want.begin.push_back(static_cast<int32_t>(want.tri.size()));
+                    edge_pairs += j >= ct.edge_target_base && kernel == BroadKernel::Auto;
+                }
+                ASSERT_EQ(mine.cand.node, want.node) << "layout " << layout << " rank " << rank;
+                ASSERT_EQ(mine.cand.body, want.body) << "layout " << layout << " rank " << rank;
+                ASSERT_EQ(mine.cand.begin, want.begin) << "layout " << layout << " rank " << rank;
+                ASSERT_EQ(mine.cand.tri, want.tri) << "layout " << layout << " rank " << rank;
+                if (kernel == BroadKernel::Auto) pairs += mine.cand.node.size();
+            }
+        }
+        EXPECT_EQ(pairs, full.cand.node.size()) << "layout " << layout;
+    }
+    EXPECT_GT(edge_pairs, 100u);  // edge targets were among the filtered ones
+}
+
 // A second detection on the same state (scratch and output buffers already sized, cell-ordered
 // copies present behind the id-ordered data) gives the same candidates as the first, and a
 // state whose bodies moved gives the brute-force set again (no stale scratch is read).
