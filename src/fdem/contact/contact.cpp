@@ -944,6 +944,10 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         span_begin[ch] = chunk_begin(ch);
         span_count[ch] = chunk_count[ch];
     }
+    // the key (node, body) of the k-th pair in contact: key_node[in_contact[k]], the
+    // candidate's, or (distributed) the gathered record's
+    const NodeId* key_node = cs.cand.node.data();
+    const BodyId* key_body = cs.cand.body.data();
     if (share != nullptr) {
         // records (target node, contactor body, result), each process's in pair order; the
         // gathered ones are put in (node, body) order, the serial pair order, by share->order
@@ -969,8 +973,12 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         comm->allgather_bytes(send, share->recv);
         const size_t n_all = share->recv.size() / kRec;
         // (every process's pairs in contact: more than this process's candidates; grow only)
-        if (cs.pair_out.size() < n_all) cs.pair_out.resize(n_all);
+        if (cs.pair_out.size() < n_all) {
+            cs.pair_out.resize(n_all);
+            cs.in_contact.resize(n_all);
+        }
         out = cs.pair_out.data();
+        in_contact = cs.in_contact.data();
         share->rec_node.resize(n_all);
         share->rec_body.resize(n_all);
         NodeId* rnode = share->rec_node.data();
@@ -980,7 +988,10 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             std::memcpy(&rnode[k], r, sizeof(NodeId));
             std::memcpy(&rbody[k], r + sizeof(NodeId), sizeof(BodyId));
             std::memcpy(&out[k], r + kKey, sizeof(PairResult));
+            in_contact[k] = static_cast<int32_t>(k);  // the record's key is key_node[k] below
         }
+        key_node = rnode;
+        key_body = rbody;
         nspans = 1;
         span_begin[0] = 0;
         span_count[0] = static_cast<int32_t>(n_all);
@@ -993,15 +1004,6 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         });
     }
     const int32_t* perm = share != nullptr ? share->order.data() : nullptr;
-    // the key (node, body) of the k-th pair in contact: a gathered record's, or the candidate's
-    const NodeId* rec_node = share != nullptr ? share->rec_node.data() : nullptr;
-    const BodyId* rec_body = share != nullptr ? share->rec_body.data() : nullptr;
-    auto key_node = [&](int32_t k) {
-        return rec_node != nullptr ? rec_node[k] : cs.cand.node[static_cast<size_t>(in_contact[k])];
-    };
-    auto key_body = [&](int32_t k) {
-        return rec_body != nullptr ? rec_body[k] : cs.cand.body[static_cast<size_t>(in_contact[k])];
-    };
     if (ghosts) {
         // the lost-contact test of a released pair (below) reads the contactor's boundary and
         // the target: all-gather x first if any pair it tests is released this step (the same
@@ -1009,8 +1011,8 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         bool test = false;
         size_t a = 0;
         for (int32_t idx = 0; idx < span_count[0] && !test; ++idx) {
-            const NodeId j = key_node(perm[idx]);
-            const BodyId c = key_body(perm[idx]);
+            const NodeId j = key_node[in_contact[perm[idx]]];
+            const BodyId c = key_body[in_contact[perm[idx]]];
             for (; a < cs.active.size() && pair_below(cs.active[a], j, c); ++a)
                 test = test || lost_test_needed(m, ct, cs.active[a]);
             if (a < cs.active.size() && cs.active[a].node == j && cs.active[a].body == c) ++a;
@@ -1067,8 +1069,9 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         const int32_t b = span_begin[sp];
         for (int32_t idx = b; idx < b + span_count[sp]; ++idx) {
             const int32_t k = perm != nullptr ? perm[idx] : idx;
-            const NodeId j = key_node(k);
-            const BodyId c = key_body(k);
+            const int32_t pr = in_contact[k];
+            const NodeId j = key_node[pr];
+            const BodyId c = key_body[pr];
             while (ia < cs.active.size() && pair_below(cs.active[ia], j, c))
                 release(cs.active[ia++]);
             if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) ++ia;
