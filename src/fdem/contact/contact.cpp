@@ -8,6 +8,7 @@
 // is bitwise the same for any thread count. Baseline A (ContactAlgorithm::LegacyTriangle) goes
 // to legacy_triangle.cpp; baseline B only changes the field (field.hpp evaluate_field).
 #include "contact/contact.hpp"
+#include "fdem/assert.hpp"
 #include "fdem/build.hpp"
 
 #include <algorithm>
@@ -1030,7 +1031,12 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     ExactSum stored;
     ExactSum& dissipated = s.energy_sums.dissipated_contact;
     size_t ia = 0;
-    cs.active_next.clear();
+    // the new active list: one entry per pair in contact, written through a pointer (resize
+    // value-initialises only the part beyond the previous length)
+    size_t n_next = 0;
+    for (int32_t sp = 0; sp < nspans; ++sp)
+        n_next += static_cast<size_t>(span_count[sp]);
+    cs.active_next.resize(n_next);
     auto release = [&](const ActiveContact& a) {
         const BodyId bt = m.node_body[target_node(ct, a.node)];
         const ContactParams& p =
@@ -1065,6 +1071,15 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     // only the pairs in contact, in ascending pair order: an active pair that is a candidate
     // but not in contact is released at the same place of the merged order as before (by the
     // while loop, before the next larger key), so the order of every sum is unchanged
+    // (the old list, the counters and the new list in locals: the force stores below could
+    // alias members of cs, which the compiler would otherwise reload after each of them)
+    const ActiveContact* act = cs.active.data();
+    const size_t n_act = cs.active.size();
+    ActiveContact* next = cs.active_next.data();
+    size_t w = 0;
+    Real max_ratio = cs.max_depth_ratio;
+    int64_t deep = cs.deep_penetrations;
+    const Real deep_limit = cm.deep_ratio_limit;
     for (int32_t sp = 0; sp < nspans; ++sp) {
         const int32_t b = span_begin[sp];
         for (int32_t idx = b; idx < b + span_count[sp]; ++idx) {
@@ -1072,9 +1087,9 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             const int32_t pr = in_contact[k];
             const NodeId j = key_node[pr];
             const BodyId c = key_body[pr];
-            while (ia < cs.active.size() && pair_below(cs.active[ia], j, c))
-                release(cs.active[ia++]);
-            if (ia < cs.active.size() && cs.active[ia].node == j && cs.active[ia].body == c) ++ia;
+            while (ia < n_act && pair_below(act[ia], j, c))
+                release(act[ia++]);
+            if (ia < n_act && act[ia].node == j && act[ia].body == c) ++ia;
             const PairResult& o = out[k];
 
             // f on the target, -N_i f on the contactor (eq. 20)
@@ -1084,16 +1099,19 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                 add_node_force(ct, s, q[kk], -o.N[kk] * o.f);
 
             const Real ratio = o.h.depth_ratio;
-            cs.max_depth_ratio = std::max(cs.max_depth_ratio, ratio);
-            if (ratio > cm.deep_ratio_limit) ++cs.deep_penetrations;
+            max_ratio = std::max(max_ratio, ratio);
+            deep += ratio > deep_limit ? 1 : 0;
 
             stored.add(o.stored);
             if (o.dissipated != 0) dissipated.add(o.dissipated);  // (exact: zeros add nothing)
-            cs.active_next.push_back(ActiveContact{j, c, o.h});
+            next[w++] = ActiveContact{j, c, o.h};
         }
     }
-    while (ia < cs.active.size())
-        release(cs.active[ia++]);
+    while (ia < n_act)
+        release(act[ia++]);
+    FDEM_ASSERT(w == n_next, "every pair in contact enters the new active list once");
+    cs.max_depth_ratio = max_ratio;
+    cs.deep_penetrations = static_cast<decltype(cs.deep_penetrations)>(deep);
     std::swap(cs.active, cs.active_next);
     if (cs.rebase_pending) {  // consumed (eq. 9.26); keeps its capacity
         cs.rebase.clear();
