@@ -442,6 +442,8 @@ void Simulation::distribute(const Comm& comm, const std::vector<int32_t>& group_
     I.plan =
         std::make_unique<StepPlan>(make_step_plan(I.model, comm.rank(), comm.size(), group_owner));
     I.piece = make_vtu_piece(I.model, I.plan->node_owner, comm.rank());
+    // the state's list so far is a serial one (every target's pairs) until the next broad phase
+    I.plan->contact.total_candidates = static_cast<int64_t>(I.state.contact.cand.node.size());
 }
 
 bool Simulation::output_open() const {
@@ -492,6 +494,8 @@ void Simulation::restore_checkpoint(const std::string& path) {
     if (I.plan) {  // other candidates: new ghost lists and box lists
         I.plan->ghosts.dirty = true;
         I.plan->contact.boxes_valid = false;
+        // the file holds the serial list (every process has it until its next broad phase)
+        I.plan->contact.total_candidates = static_cast<int64_t>(I.state.contact.cand.node.size());
     }
 }
 
