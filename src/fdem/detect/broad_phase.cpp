@@ -146,19 +146,15 @@ void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, c
         detail::sort_hits(hits, nh);
         if (nh > 0) detail::emit(ct, j, hits, nh, w);
     };
-    if (own.owner == nullptr) {
-        for (NodeId j : ct.boundary_nodes)
-            query(j);
-        for (NodeId j = ct.edge_target_base; j < ct.target_end(); ++j)
-            query(j);
-    } else {
-        // (a distributed run: this process's targets only, same order)
-        for (NodeId j : ct.boundary_nodes) {
-            if (own.owner[j] == own.rank) query(j);
-        }
-        for (NodeId j = ct.edge_target_base; j < ct.target_end(); ++j) {
-            if (own.owner[target_node(ct, j)] == own.rank) query(j);
-        }
+    // (a distributed run: this process's targets only, same order)
+    auto mine = [&](NodeId j) {
+        return own.owner == nullptr || own.owner[target_node(ct, j)] == own.rank;
+    };
+    for (NodeId j : ct.boundary_nodes) {
+        if (mine(j)) query(j);
+    }
+    for (NodeId j = ct.edge_target_base; j < ct.target_end(); ++j) {
+        if (mine(j)) query(j);
     }
     w.finish();
 }
