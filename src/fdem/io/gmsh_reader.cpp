@@ -3,6 +3,7 @@
 // runs a complete initialize() ... finalize() cycle, so no Gmsh state leaks from one read to the
 // next (options such as Mesh.MeshSizeMax included).
 #include <gmsh.h>
+#include <omp.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -184,10 +185,12 @@ std::string element_name(int type) {
     return name;
 }
 
-/// Scoped Gmsh session: initialize quietly, collect log messages, always finalize.
+/// Scoped Gmsh session: initialize quietly, collect log messages, always finalize. Gmsh's
+/// General.NumThreads calls omp_set_num_threads() for the calling thread: without restoring
+/// it, every parallel region of the run after a mesh read would take one thread.
 class GmshSession {
 public:
-    GmshSession() {
+    GmshSession() : omp_threads_(omp_get_max_threads()) {
         // "-v 2": errors and warnings reach the logger, nothing reaches the terminal
         const char* args[] = {"fdem", "-v", "2"};
         gmsh::initialize(3, const_cast<char**>(args), /*readConfigFiles=*/false);
@@ -202,6 +205,7 @@ public:
         } catch (...) {
             // finalize failing leaves nothing for us to clean up
         }
+        omp_set_num_threads(omp_threads_);  // (Gmsh set it to General.NumThreads)
     }
     GmshSession(const GmshSession&) = delete;
     GmshSession& operator=(const GmshSession&) = delete;
@@ -217,6 +221,9 @@ public:
         }
         return {};
     }
+
+private:
+    int omp_threads_;  ///< the caller's OpenMP thread count before Gmsh changed it
 };
 
 /// Read the current Gmsh model into mesh (called inside a session). names: the physical names

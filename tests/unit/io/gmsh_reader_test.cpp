@@ -1,6 +1,7 @@
 // read_mesh through Gmsh: the four .msh flavours, .geo meshing, physical groups, orientation.
 // Test meshes: tests/data/square.geo (unit square, lc = 0.5) and the .msh files made from it.
 #include <gtest/gtest.h>
+#include <omp.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -149,6 +150,20 @@ TEST(ReadMesh, RepeatedReadsAreIdentical) {
     EXPECT_NE(a.tris.size(), b.tris.size());
     EXPECT_EQ(a.tris, c.tris);
     EXPECT_TRUE(a.nodes == c.nodes);
+}
+
+TEST(ReadMesh, KeepsTheCallersOpenMpThreadCount) {
+    // Gmsh's General.NumThreads = 1 calls omp_set_num_threads(1) for the calling thread: before
+    // the reader restored it, every `fdem run` without --threads stepped on one thread after
+    // reading its meshes (found 2026-11-28). A .geo (meshed) and a .msh (read) alike.
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(3);
+    (void)read_mesh(kData + "/square.geo", 0.25);
+    EXPECT_EQ(omp_get_max_threads(), 3);
+    omp_set_num_threads(2);
+    (void)read_mesh(kData + "/square_22_ascii.msh", 0);
+    EXPECT_EQ(omp_get_max_threads(), 2);
+    omp_set_num_threads(before);
 }
 
 TEST(ReadMesh, ClockwiseGeometryGivesConsistentlyOrientedTriangles) {
