@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fdem/candidates.hpp"
+#include "fdem/exact_sum.hpp"
 #include "fdem/math.hpp"
 
 namespace fdem {
@@ -101,6 +102,18 @@ struct LegacyTriangleState {
     std::vector<Real> couple_dissipated;
 };
 
+/// One thread's share of the apply of the pairs in contact (add_contact_forces() step 3b with
+/// 2+ threads): its slice's energies (exact sums: any split gives the same bits) and
+/// diagnostics, combined in thread order afterwards. Per-step scratch.
+struct alignas(64) ContactApplyPart {
+    ExactSum stored, dissipated;
+    Real max_depth_ratio = 0;
+    int64_t deep = 0, lost = 0;
+    NodeId lost_node = kNone;
+    BodyId lost_body = kNone;
+    Real lost_depth_ratio = 0;
+};
+
 struct ContactState {
     int32_t active_contacts = 0;  ///< pairs in contact after the last step
 
@@ -130,6 +143,8 @@ struct ContactState {
     std::vector<ActiveContact> active;
     std::vector<ActiveContact> active_next;
     std::vector<PairResult> pair_out;  ///< as in_contact, scratch (see PairResult)
+    /// scratch of the apply with 2+ threads: per thread, its share of the bookkeeping
+    std::vector<ContactApplyPart> apply_part;
     /// energy continuity through a rebuild of the contact topology (theory eq. 9.26): written
     /// by rebuild_contact_topology() (probe of the old topology at x^n, sorted by (node, body)),
     /// read and cleared by the next add_contact_forces() of the same step; never saved

@@ -100,6 +100,15 @@ foreach(case "04_particles:1e-3:4e-4:2 3 4" "08_brazilian_disc:4e-6:2e-6:3")
   set_tests_properties(mpi.same_checkpoint.${name} PROPERTIES LABELS mpi TIMEOUT 300
                        PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: the serial checkpoint")
 endforeach()
+# The contact apply on several threads (contact.cpp step 3b, from kMinParallelApply pairs in
+# contact): the saturated pack with 2 OpenMP threads per process, 1 and 2 processes, against one
+# process with one thread
+add_test(NAME mpi.same_as_serial.saturated_pack_threads
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/saturated_pack.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${mpi_out}/saturated_pack "2 3")
+set_tests_properties(mpi.same_as_serial.saturated_pack_threads PROPERTIES LABELS mpi TIMEOUT 300
+                     PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
 # D13: [output] merge = true: process 0 writes the serial .vtu frames instead of .pvtu pieces
 add_test(NAME mpi.same_as_serial.merged_frames
          COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}

@@ -4,12 +4,15 @@
 //
 // Pair loop order: candidate pairs sorted by (target node, contactor body), merged with the
 // active-contact list of the previous step that is sorted the same way. The pairs are evaluated
-// in parallel (OpenMP) into a per-pair buffer and applied serially in pair order, so the result
-// is bitwise the same for any thread count. Baseline A (ContactAlgorithm::LegacyTriangle) goes
+// in parallel (OpenMP) into a per-pair buffer and applied in pair order (every node receives its
+// forces in that order; the energies are exact sums), so the result is bitwise the same for any
+// thread count. Baseline A (ContactAlgorithm::LegacyTriangle) goes
 // to legacy_triangle.cpp; baseline B only changes the field (field.hpp evaluate_field).
 #include "contact/contact.hpp"
 #include "fdem/assert.hpp"
 #include "fdem/build.hpp"
+
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -37,6 +40,8 @@ constexpr Real kRejectMargin = 1e-9;
 // candidate pairs per step below which the narrow phase runs on one thread (fork/join of a
 // parallel region costs about as much as a few thousand pair evaluations)
 constexpr int32_t kMinParallelPairs = 2048;
+// below this many pairs in contact the apply (step 3b) runs on one thread
+constexpr int32_t kMinParallelApply = 4096;
 // the narrow phase splits the pairs into this many fixed chunks (independent of the thread
 // count); each chunk lists its pairs in contact at the front of its range of cs.in_contact
 constexpr int32_t kPairChunks = 64;
@@ -65,19 +70,22 @@ bool inside_body(const ContactTopology& ct, BodyId c, const Vec2* x, Vec2 p) {
     return in;
 }
 
+// The forces of one pair in contact, node by node: visit(i, f) for every real node i and the
+// force f it receives, in the order of the serial loop. The apply with 2+ threads
+// (add_contact_forces() step 3b) adds them for the nodes of one range only (add_pair_forces with
+// a range); the values are the same expressions either way.
+
 // force f on target t: the node, or half to each end node of an edge target (theory §6.12)
-inline void add_target_force(const ContactTopology& ct, State& s, NodeId t, Vec2 f) {
+template <class Visit>
+inline void visit_target_force(const ContactTopology& ct, NodeId t, Vec2 f, Visit&& visit) {
     if (t < ct.num_real_nodes) {
-        s.f[t] += f;
-        s.f_contact[t] += f;
+        visit(t, f);
         return;
     }
     const auto& e = ct.boundary_edges[static_cast<size_t>(t - ct.edge_target_base)];
     const Vec2 h = 0.5 * f;
-    s.f[e[0]] += h;
-    s.f_contact[e[0]] += h;
-    s.f[e[1]] += h;
-    s.f_contact[e[1]] += h;
+    visit(e[0], h);
+    visit(e[1], h);
 }
 
 // Welded contactor (docs/theory.md §6.15, eq. 6.23): the mass-weighted mean of group g's copies
@@ -100,31 +108,72 @@ inline Vec2 weld_mean(const ContactTopology& ct, const Vec2* a, NodeId i) {
 
 // force f on real contactor node i: to the copies of its sector by their mass shares if grouped
 // (the chain rule of eq. 6.23), else to i
-inline void add_real_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f) {
+template <class Visit>
+inline void visit_real_force(const ContactTopology& ct, NodeId i, Vec2 f, Visit&& visit) {
     const int32_t g = ct.welded() ? ct.weld_group[static_cast<size_t>(i)] : -1;
     if (g < 0) {
-        s.f[i] += f;
-        s.f_contact[i] += f;
+        visit(i, f);
         return;
     }
     for (int32_t k = ct.weld_group_begin[static_cast<size_t>(g)];
-         k < ct.weld_group_begin[static_cast<size_t>(g) + 1]; ++k) {
-        const NodeId c = ct.weld_copy[static_cast<size_t>(k)];
-        const Vec2 fc = ct.weld_share[static_cast<size_t>(k)] * f;
-        s.f[c] += fc;
-        s.f_contact[c] += fc;
-    }
+         k < ct.weld_group_begin[static_cast<size_t>(g) + 1]; ++k)
+        visit(ct.weld_copy[static_cast<size_t>(k)], ct.weld_share[static_cast<size_t>(k)] * f);
 }
 
 // force f on contact node i (virtual: to its parents with the frozen weights, spec §4.4-6)
-inline void add_node_force(const ContactTopology& ct, State& s, NodeId i, Vec2 f) {
+template <class Visit>
+inline void visit_node_force(const ContactTopology& ct, NodeId i, Vec2 f, Visit&& visit) {
     if (i < ct.num_real_nodes) {
-        add_real_force(ct, s, i, f);
+        visit_real_force(ct, i, f, visit);
         return;
     }
     const size_t v = static_cast<size_t>(i - ct.num_real_nodes);
     for (int k = 0; k < 3; ++k)
-        add_real_force(ct, s, ct.virt_parent[v][k], ct.virt_weight[v][k] * f);
+        visit_real_force(ct, ct.virt_parent[v][k], ct.virt_weight[v][k] * f, visit);
+}
+
+// f on the target, -N_i f on the contactor's vertices (eq. 20): every force of one pair in
+// contact, target first, then vertices 0, 1, 2
+template <class Visit>
+inline void visit_pair_forces(const ContactTopology& ct, NodeId j, const PairResult& o,
+                              Visit&& visit) {
+    const auto& q = ct.sub_tri[o.tri];
+    visit_target_force(ct, j, o.f, visit);
+    for (int k = 0; k < 3; ++k)
+        visit_node_force(ct, q[k], -o.N[k] * o.f, visit);
+}
+
+// the pair's forces added to f and f_contact (fc): of every node, or of the nodes [lo, hi) only
+inline void add_pair_forces(const ContactTopology& ct, Vec2* f, Vec2* fc, NodeId j,
+                            const PairResult& o) {
+    visit_pair_forces(ct, j, o, [f, fc](NodeId i, Vec2 fi) {
+        f[i] += fi;
+        fc[i] += fi;
+    });
+}
+inline void add_pair_forces(const ContactTopology& ct, Vec2* f, Vec2* fc, NodeId j,
+                            const PairResult& o, NodeId lo, NodeId hi) {
+    visit_pair_forces(ct, j, o, [f, fc, lo, hi](NodeId i, Vec2 fi) {
+        if (i < lo || i >= hi) return;
+        f[i] += fi;
+        fc[i] += fi;
+    });
+}
+
+// The real nodes [lo, hi] the forces of pair (target j, contactor c) can reach: the target's
+// (an edge target: its end nodes) and body c's node range, which holds every vertex, virtual-node
+// parent and welded copy of its contactor geometry (a conservative span, without the walk).
+inline void pair_span(const Model& m, const ContactTopology& ct, NodeId j, BodyId c, NodeId& lo,
+                      NodeId& hi) {
+    const Body& b = m.bodies[static_cast<size_t>(c)];
+    NodeId tl = j, th = j;
+    if (j >= ct.num_real_nodes) {
+        const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
+        tl = std::min(e[0], e[1]);
+        th = std::max(e[0], e[1]);
+    }
+    lo = std::min(tl, b.node_begin);
+    hi = std::max(th, b.node_end - 1);
 }
 
 // the order of the per-pair lists (ContactState::active, rebase, the candidates): by (target
@@ -901,7 +950,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
 #pragma omp parallel if (npairs > kMinParallelPairs)
         {
             if (boxes) boxes_of(ct, xc, xv, box, nbodies, box_list, box_count);
-#pragma omp for schedule(static)
+#pragma omp for schedule(static, 1) nowait
             for (int32_t ch = 0; ch < kPairChunks; ++ch) {
                 const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
                 // pass 1, branch-free: the pairs the box does not reject, in order
@@ -1023,21 +1072,45 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         if (test) gather_nodes(s.x.data(), *plan, *comm);
     }
 
-    // 3b. apply in pair order, merged with the previous active list (both sorted by (node,
-    //     body)), releasing the histories of pairs that left contact in that merged order: the
-    //     sums and the force accumulation are those of a serial loop
-    // energies per pair, summed exactly (theory §4.4): the dissipation straight into the run's
-    // running sum
-    ExactSum stored;
-    ExactSum& dissipated = s.energy_sums.dissipated_contact;
-    size_t ia = 0;
-    // the new active list: one entry per pair in contact, written through a pointer (resize
-    // value-initialises only the part beyond the previous length)
-    size_t n_next = 0;
+    // 3b. apply: the forces of the pairs in contact (eq. 20) and the bookkeeping, merged with
+    //     the previous active list (both sorted by (node, body)), releasing the histories of
+    //     pairs that left contact. The pairs in contact take the places 0 .. n_next - 1 in pair
+    //     order (their places in the new active list). Every node receives its forces in that
+    //     order, so f and f_contact are those of a serial loop; the energies are exact sums
+    //     (theory §4.4), the diagnostics counts and maxima, so any split of the bookkeeping
+    //     gives the same bits. One thread: one loop does both. T >= 2 threads (at least
+    //     kMinParallelApply pairs in contact): thread t first does the bookkeeping of the places
+    //     [n_next t / T, n_next (t + 1) / T) (with the old entries between their keys); then,
+    //     after a barrier, adds the forces of every pair to its own range of real nodes
+    //     [N t / T, N (t + 1) / T) only, in pair order, skipping the pairs whose node span
+    //     (pair_span(): the target and the contactor body's nodes) misses the range.
+    int32_t span_pos[kPairChunks + 1];  // the place of each span's first pair
+    span_pos[0] = 0;
     for (int32_t sp = 0; sp < nspans; ++sp)
-        n_next += static_cast<size_t>(span_count[sp]);
-    cs.active_next.resize(n_next);
-    auto release = [&](const ActiveContact& a) {
+        span_pos[sp + 1] = span_pos[sp] + span_count[sp];
+    const int32_t n_next = span_pos[nspans];
+    // the new active list, written by place (resize value-initialises only the part beyond the
+    // previous length)
+    cs.active_next.resize(static_cast<size_t>(n_next));
+    // calls fn(p, k) for the places p in [p0, p1) in order; k indexes in_contact and out
+    auto for_places = [&](int32_t p0, int32_t p1, auto&& fn) {
+        if (p0 >= p1) return;
+        int32_t sp = 0;
+        while (span_pos[sp + 1] <= p0)
+            ++sp;
+        for (int32_t p = p0; p < p1; ++sp) {
+            const int32_t end = std::min(p1, span_pos[sp + 1]);
+            const int32_t off = span_begin[sp] - span_pos[sp];
+            if (perm != nullptr) {
+                for (; p < end; ++p)
+                    fn(p, perm[p + off]);
+            } else {
+                for (; p < end; ++p)
+                    fn(p, p + off);
+            }
+        }
+    };
+    auto release = [&](const ActiveContact& a, ContactApplyPart& part, ExactSum& dissipated) {
         const BodyId bt = m.node_body[target_node(ct, a.node)];
         const ContactParams& p =
             pair_parameters(cm, m.bodies[a.body].material, m.bodies[bt].material);
@@ -1048,12 +1121,13 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         if (lost_test_needed(m, ct, a) &&
             inside_body(ct, a.body, xc, target_point(ct, x, a.node))) {
             lost = true;  // left the boundary layer inwards: penetration too deep (spec §4.6)
-            ++cs.lost_inside;
-            if (cs.lost_node < 0 || a.h.depth_ratio > cs.lost_depth_ratio) {
-                // the deepest one is named in the failure message (integrate/run_checks.cpp)
-                cs.lost_node = a.node;
-                cs.lost_body = a.body;
-                cs.lost_depth_ratio = a.h.depth_ratio;
+            ++part.lost;
+            // the deepest one (the first of equals in pair order; depth ratios are finite) is
+            // named in the failure message (integrate/run_checks.cpp)
+            if (part.lost_node < 0 || a.h.depth_ratio > part.lost_depth_ratio) {
+                part.lost_node = a.node;
+                part.lost_body = a.body;
+                part.lost_depth_ratio = a.h.depth_ratio;
             }
         }
         if (rebased(cs, a.body, bt)) {
@@ -1068,48 +1142,139 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         // normal potential leaves the books as that of a lost pair
         dissipated.add(release_energy(p, a.h, scale, lost || a.h.d0 < 0, dt));
     };
-    // only the pairs in contact, in ascending pair order: an active pair that is a candidate
-    // but not in contact is released at the same place of the merged order as before (by the
-    // while loop, before the next larger key), so the order of every sum is unchanged
-    // (the old list, the counters and the new list in locals: the force stores below could
-    // alias members of cs, which the compiler would otherwise reload after each of them)
+    // (the old list, the new list and the sums in locals: the force stores could alias members
+    // of cs, which the compiler would otherwise reload after each of them)
     const ActiveContact* act = cs.active.data();
     const size_t n_act = cs.active.size();
     ActiveContact* next = cs.active_next.data();
-    size_t w = 0;
-    Real max_ratio = cs.max_depth_ratio;
-    int64_t deep = cs.deep_penetrations;
     const Real deep_limit = cm.deep_ratio_limit;
-    for (int32_t sp = 0; sp < nspans; ++sp) {
-        const int32_t b = span_begin[sp];
-        for (int32_t idx = b; idx < b + span_count[sp]; ++idx) {
-            const int32_t k = perm != nullptr ? perm[idx] : idx;
+    Vec2* const f = s.f.data();
+    Vec2* const fc = s.f_contact.data();
+    // the first old entry not below the pair at place p (n_act for p = n_next)
+    auto old_from = [&](int32_t p) -> size_t {
+        if (p >= n_next) return n_act;
+        size_t at = 0;
+        for_places(p, p + 1, [&](int32_t, int32_t k) {
+            const NodeId j = key_node[in_contact[k]];
+            const BodyId c = key_body[in_contact[k]];
+            at = static_cast<size_t>(std::partition_point(act, act + n_act,
+                                                          [j, c](const ActiveContact& a) {
+                                                              return pair_below(a, j, c);
+                                                          }) -
+                                     act);
+        });
+        return at;
+    };
+    // the bookkeeping of the places [p0, p1) and of the old entries [ia, ia_end) (those below
+    // the pair at p1); with_forces: the forces too (one thread)
+    // (captures by value: the force stores could alias anything captured by reference, which
+    // the compiler would then reload after each of them)
+    auto bookkeeping = [act, next, out, in_contact, key_node, key_body, perm, f, fc, deep_limit,
+                        &ct, &release, &span_pos,
+                        &span_begin](int32_t p0, int32_t p1, size_t ia, size_t ia_end,
+                                     ContactApplyPart& part, auto with_forces) {
+        ExactSum stored, dissipated;
+        Real max_ratio = 0;
+        int64_t deep = 0;
+        int32_t sp = 0;  // the span of place p
+        int32_t next_span = span_pos[1], off = span_begin[0];
+        // only the pairs in contact, in ascending pair order: an active pair that is a candidate
+        // but not in contact is released at its place of the merged order (by the while loop,
+        // before the next larger key)
+        for (int32_t p = p0; p < p1; ++p) {
+            while (p >= next_span) {
+                ++sp;
+                next_span = span_pos[sp + 1];
+                off = span_begin[sp] - span_pos[sp];
+            }
+            const int32_t k = perm != nullptr ? perm[p] : p + off;
             const int32_t pr = in_contact[k];
             const NodeId j = key_node[pr];
             const BodyId c = key_body[pr];
-            while (ia < n_act && pair_below(act[ia], j, c))
-                release(act[ia++]);
-            if (ia < n_act && act[ia].node == j && act[ia].body == c) ++ia;
+            while (ia < ia_end && pair_below(act[ia], j, c))
+                release(act[ia++], part, dissipated);
+            if (ia < ia_end && act[ia].node == j && act[ia].body == c) ++ia;
             const PairResult& o = out[k];
-
-            // f on the target, -N_i f on the contactor (eq. 20)
-            const auto& q = ct.sub_tri[o.tri];
-            add_target_force(ct, s, j, o.f);
-            for (int kk = 0; kk < 3; ++kk)
-                add_node_force(ct, s, q[kk], -o.N[kk] * o.f);
-
+            if constexpr (decltype(with_forces)::value)
+                add_pair_forces(ct, f, fc, j, o);  // f on the target, -N_i f on the contactor
             const Real ratio = o.h.depth_ratio;
             max_ratio = std::max(max_ratio, ratio);
             deep += ratio > deep_limit ? 1 : 0;
-
             stored.add(o.stored);
             if (o.dissipated != 0) dissipated.add(o.dissipated);  // (exact: zeros add nothing)
-            next[w++] = ActiveContact{j, c, o.h};
+            next[p] = ActiveContact{j, c, o.h};
+        }
+        while (ia < ia_end)
+            release(act[ia++], part, dissipated);
+        part.stored = stored;
+        part.dissipated = dissipated;
+        part.max_depth_ratio = max_ratio;
+        part.deep = deep;
+    };
+    const int max_threads = omp_get_max_threads();
+    if (cs.apply_part.size() < static_cast<size_t>(max_threads))
+        cs.apply_part.resize(static_cast<size_t>(max_threads));
+    ContactApplyPart* parts = cs.apply_part.data();
+    int nparts = 1;
+    const bool par_apply = max_threads > 1 && n_next >= kMinParallelApply;
+    if (!par_apply) {
+        parts[0] = ContactApplyPart{};
+        bookkeeping(0, n_next, 0, n_act, parts[0], std::true_type{});
+    } else {
+#pragma omp parallel
+        {
+            const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+            ContactApplyPart& part = parts[t];
+            part = ContactApplyPart{};
+            if (t == 0) nparts = nt;
+            const auto slice = [&](int r) {
+                return static_cast<int32_t>(static_cast<int64_t>(n_next) * r / nt);
+            };
+            const int32_t p0 = slice(t), p1 = slice(t + 1);
+            bookkeeping(p0, p1, t == 0 ? 0 : old_from(p0), old_from(p1), part, std::false_type{});
+#pragma omp barrier
+            // the forces, to this thread's real nodes only, in pair order
+            const int64_t nn = ct.num_real_nodes;
+            const NodeId lo = static_cast<NodeId>(nn * t / nt);
+            const NodeId hi = static_cast<NodeId>(nn * (t + 1) / nt);
+            for_places(0, n_next, [&](int32_t, int32_t k) {
+                const int32_t pr = in_contact[k];
+                const NodeId j = key_node[pr];
+                NodeId a, b;
+                pair_span(m, ct, j, key_body[pr], a, b);
+                if constexpr (kAssertsEnabled) {
+                    visit_pair_forces(ct, j, out[k], [a, b](NodeId i, Vec2) {
+                        FDEM_ASSERT(i >= a && i <= b, "a pair's force reaches beyond its span");
+                    });
+                }
+                if (b < lo || a >= hi) return;
+                if (a >= lo && b < hi) {
+                    add_pair_forces(ct, f, fc, j, out[k]);
+                } else {
+                    add_pair_forces(ct, f, fc, j, out[k], lo, hi);
+                }
+            });
         }
     }
-    while (ia < n_act)
-        release(act[ia++]);
-    FDEM_ASSERT(w == n_next, "every pair in contact enters the new active list once");
+    // the threads' shares in thread order (the exact sums in any order)
+    ExactSum stored;
+    ExactSum& dissipated = s.energy_sums.dissipated_contact;
+    Real max_ratio = cs.max_depth_ratio;
+    int64_t deep = cs.deep_penetrations;
+    for (int r = 0; r < nparts; ++r) {
+        const ContactApplyPart& part = parts[r];
+        stored.add(part.stored);
+        dissipated.add(part.dissipated);
+        max_ratio = std::max(max_ratio, part.max_depth_ratio);
+        deep += part.deep;
+        cs.lost_inside += static_cast<decltype(cs.lost_inside)>(part.lost);
+        if (part.lost_node != kNone &&
+            (cs.lost_node < 0 || part.lost_depth_ratio > cs.lost_depth_ratio)) {
+            cs.lost_node = part.lost_node;
+            cs.lost_body = part.lost_body;
+            cs.lost_depth_ratio = part.lost_depth_ratio;
+        }
+    }
     cs.max_depth_ratio = max_ratio;
     cs.deep_penetrations = static_cast<decltype(cs.deep_penetrations)>(deep);
     std::swap(cs.active, cs.active_next);

@@ -225,7 +225,7 @@ void put_state(Sink& o, const State& s) {
     put(o, c.active_next);
     put(o, c.xv);
     put(o, c.vv);
-    // pair_out: per-step scratch (not saved)
+    // pair_out, apply_part: per-step scratch (not saved)
 
     // baseline A: couples with their friction history and the Verlet skin
     const LegacyTriangleState& l = c.legacy;
