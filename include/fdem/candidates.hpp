@@ -30,6 +30,9 @@ struct BroadPhaseScratch {
     std::vector<int32_t> cell_start;
     std::vector<int32_t> cell_items;
     std::vector<int32_t> query;  ///< fill cursor of the grid, then the hit list of one node
+    /// queries on 2+ threads (from 4 096 targets): each thread's list and hit list
+    std::vector<Candidates> part;
+    std::vector<std::vector<int32_t>> part_hits;
 };
 
 }  // namespace fdem

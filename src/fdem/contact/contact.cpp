@@ -1243,7 +1243,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                 NodeId a, b;
                 pair_span(m, ct, j, key_body[pr], a, b);
                 if constexpr (kAssertsEnabled) {
-                    visit_pair_forces(ct, j, out[k], [a, b](NodeId i, Vec2) {
+                    visit_pair_forces(ct, j, out[k], [a, b]([[maybe_unused]] NodeId i, Vec2) {
                         FDEM_ASSERT(i >= a && i <= b, "a pair's force reaches beyond its span");
                     });
                 }

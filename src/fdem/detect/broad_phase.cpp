@@ -5,6 +5,8 @@
 #include "detect/broad_scan.hpp"
 #include "detect/grid.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
 #include <climits>
@@ -14,6 +16,10 @@
 namespace fdem {
 
 namespace {
+
+// from this many targets on, the queries run on all threads (each a contiguous range of
+// targets into its own list, concatenated in order: the same list for any thread count)
+constexpr int32_t kMinParallelTargets = 4096;
 
 inline Vec2 cpos(const ContactTopology& ct, const Vec2* x, const Vec2* xv, NodeId i) {
     return i < ct.num_real_nodes ? x[i] : xv[i - ct.num_real_nodes];
@@ -133,11 +139,9 @@ void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, c
     ng.ny = ny;
 
     // query every target boundary node against its 3x3 block
-    detail::CandWriter w(out);
     const bool simd = kernel == BroadKernel::Auto && detail::scan_avx512_supported();
-    int32_t* __restrict hits = g.query.data();
     // (boundary nodes, then the edge targets of docs/theory.md §6.12: ascending target ids)
-    auto query = [&](NodeId j) {
+    auto query = [&](NodeId j, detail::CandWriter& w, int32_t* __restrict hits) {
         detail::Block blk;
         if (!detail::node_block(m, ct, ng, j, target_point(ct, x, j), blk)) return;
         int32_t nh =
@@ -146,17 +150,74 @@ void find_candidates(const Model& m, const ContactTopology& ct, const Vec2* x, c
         detail::sort_hits(hits, nh);
         if (nh > 0) detail::emit(ct, j, hits, nh, w);
     };
-    // (a distributed run: this process's targets only, same order)
-    auto mine = [&](NodeId j) {
-        return own.owner == nullptr || own.owner[target_node(ct, j)] == own.rank;
+    // the targets [i0, i1) in ascending ids (a distributed run: this process's only, same order)
+    const int32_t n_bn = static_cast<int32_t>(ct.boundary_nodes.size());
+    const int32_t n_targets = n_bn + (ct.target_end() - ct.edge_target_base);
+    auto query_range = [&](int32_t i0, int32_t i1, detail::CandWriter& w, int32_t* hits) {
+        for (int32_t i = i0; i < i1; ++i) {
+            const NodeId j = i < n_bn ? ct.boundary_nodes[static_cast<size_t>(i)]
+                                      : ct.edge_target_base + (i - n_bn);
+            if (own.owner == nullptr || own.owner[target_node(ct, j)] == own.rank)
+                query(j, w, hits);
+        }
     };
-    for (NodeId j : ct.boundary_nodes) {
-        if (mine(j)) query(j);
+    const int max_threads = n_targets >= kMinParallelTargets ? omp_get_max_threads() : 1;
+    if (max_threads <= 1) {
+        detail::CandWriter w(out);
+        query_range(0, n_targets, w, g.query.data());
+        w.finish();
+        return;
     }
-    for (NodeId j = ct.edge_target_base; j < ct.target_end(); ++j) {
-        if (mine(j)) query(j);
+    // thread t: the targets [n t / T, n (t + 1) / T) into its own list part[t], then its part
+    // copied to its place in out (after the parts before it)
+    if (g.part.size() < static_cast<size_t>(max_threads)) {
+        g.part.resize(static_cast<size_t>(max_threads));
+        g.part_hits.resize(static_cast<size_t>(max_threads));
     }
-    w.finish();
+#pragma omp parallel num_threads(max_threads)
+    {
+        const int nthr = omp_get_num_threads(), t = omp_get_thread_num();
+        Candidates& part = g.part[static_cast<size_t>(t)];
+        std::vector<int32_t>& hv = g.part_hits[static_cast<size_t>(t)];
+        if (hv.size() < n + detail::kScanSlack) hv.resize(n + detail::kScanSlack);  // (grows only)
+        {
+            detail::CandWriter w(part);
+            const auto at = [&](int r) {
+                return static_cast<int32_t>(static_cast<int64_t>(n_targets) * r / nthr);
+            };
+            query_range(at(t), at(t + 1), w, hv.data());
+            w.finish();
+        }
+#pragma omp barrier
+        size_t p0 = 0, t0 = 0, np = 0, ntri = 0;
+        for (int r = 0; r < nthr; ++r) {
+            const Candidates& c = g.part[static_cast<size_t>(r)];
+            if (r < t) {
+                p0 += c.node.size();
+                t0 += c.tri.size();
+            }
+            np += c.node.size();
+            ntri += c.tri.size();
+        }
+#pragma omp single
+        {
+            out.node.resize(np);
+            out.body.resize(np);
+            out.begin.resize(np + 1);
+            out.tri.resize(ntri);
+            out.begin[np] = static_cast<int32_t>(ntri);
+        }
+        // (implicit barrier of single)
+        std::copy(part.node.begin(), part.node.end(),
+                  out.node.begin() + static_cast<std::ptrdiff_t>(p0));
+        std::copy(part.body.begin(), part.body.end(),
+                  out.body.begin() + static_cast<std::ptrdiff_t>(p0));
+        std::copy(part.tri.begin(), part.tri.end(),
+                  out.tri.begin() + static_cast<std::ptrdiff_t>(t0));
+        const int32_t shift = static_cast<int32_t>(t0);
+        for (size_t p = 0; p < part.node.size(); ++p)
+            out.begin[p0 + p] = part.begin[p] + shift;
+    }
 }
 
 void find_candidates_brute_force(const Model& m, const ContactTopology& ct, const Vec2* x,

@@ -218,8 +218,8 @@ void put_state(Sink& o, const State& s) {
     put(o, c.broad.cell_items);
     // query: the grid's fill cursor, then the hit list of the last target queried: scratch,
     // and in a distributed run the last target is each process's own; zeros of its size, so
-    // that the file is the same for every process count. (in_contact: narrow-phase scratch,
-    // not saved.)
+    // that the file is the same for every process count. (in_contact: narrow-phase scratch;
+    // broad.part, part_hits: the per-thread lists of the queries; not saved.)
     put(o, std::vector<int32_t>(c.broad.query.size(), 0));
     put(o, c.active);
     put(o, c.active_next);

@@ -2,6 +2,7 @@
 // overlaps |x_j - c_tau| < r_tau + b on 100 random layouts of 50-2000 small bodies, with both
 // inner loops (portable, and AVX-512 where the CPU has it: same bits, docs/performance.md).
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <chrono>
 #include <random>
@@ -110,6 +111,52 @@ TEST(BroadPhase, OwnTargetsGiveTheFullListsPairsOfThoseTargets) {
         EXPECT_EQ(pairs, full.cand.node.size()) << "layout " << layout;
     }
     EXPECT_GT(edge_pairs, 100u);  // edge targets were among the filtered ones
+}
+
+// From 4 096 targets the queries run on all threads, each a contiguous range of targets into its
+// own list, the lists concatenated in order: the same list for 1, 2, 3 and 5 threads, on both
+// inner loops and for one process's targets (a distributed run), and the brute-force set.
+TEST(BroadPhase, SameListForAnyThreadCount) {
+    std::mt19937 rng(5);
+    const Model m = random_layout(rng, 2500, 50.0, true);
+    State s = make_state(m, 1e-6);
+    update_virtual_nodes(m, s);
+    const ContactTopology& ct = s.topology;
+    ASSERT_GT(ct.boundary_nodes.size(), 4096u);  // above the threshold of the parallel queries
+    std::vector<int32_t> owner(static_cast<size_t>(m.num_nodes()));
+    for (size_t i = 0; i < owner.size(); ++i)
+        owner[i] = static_cast<int32_t>((i * 7919) % 3);
+    ContactState brute = s.contact;
+    find_candidates_brute_force(m, ct, s.x.data(), s.contact.xv.data(), brute.cand, brute.broad);
+    const int before = omp_get_max_threads();
+    for (const BroadKernel kernel : {BroadKernel::Auto, BroadKernel::Scalar}) {
+        for (const bool distributed : {false, true}) {
+            const TargetOwner own = distributed ? TargetOwner{owner.data(), 1} : TargetOwner{};
+            omp_set_num_threads(1);
+            ContactState one = s.contact;
+            find_candidates(m, ct, s.x.data(), s.x.data(), s.contact.xv.data(), one.cand, one.broad,
+                            own, kernel);
+            if (!distributed) {
+                ASSERT_EQ(one.cand.node, brute.cand.node);
+                ASSERT_EQ(one.cand.tri, brute.cand.tri);
+            }
+            for (const int threads : {2, 3, 5}) {
+                SCOPED_TRACE(threads);
+                omp_set_num_threads(threads);
+                ContactState c = s.contact;
+                // twice: the second detection reuses the per-thread lists
+                for (int rep = 0; rep < 2; ++rep) {
+                    find_candidates(m, ct, s.x.data(), s.x.data(), s.contact.xv.data(), c.cand,
+                                    c.broad, own, kernel);
+                    ASSERT_EQ(c.cand.node, one.cand.node);
+                    ASSERT_EQ(c.cand.body, one.cand.body);
+                    ASSERT_EQ(c.cand.begin, one.cand.begin);
+                    ASSERT_EQ(c.cand.tri, one.cand.tri);
+                }
+            }
+        }
+    }
+    omp_set_num_threads(before);
 }
 
 // A second detection on the same state (scratch and output buffers already sized, cell-ordered
