@@ -27,6 +27,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <span>
 #include <string>
 
 #include <fmt/format.h>
@@ -77,6 +78,8 @@ struct RunOptions {
     bool print_hash = false;
     double progress_every = 30;     ///< wall seconds between progress lines when stderr is no tty
     std::string partition = "rcb";  ///< distributed runs: rcb, ids or random node groups
+    int rebalance_every = 10;       ///< distributed runs: broad-phase searches between checks
+    double imbalance = 1.1;         ///< distributed runs: max / mean work that rebalances
 };
 
 // Rough resident size of the model and state [bytes], for `fdem check`; with fracture the
@@ -376,6 +379,25 @@ int run(const RunOptions& opt) {
 #endif
         }
         sim.distribute(*g_comm, owner);
+        // load balancing on broad-phase searches (spec D10, docs/parallel.md "Rebalancing"):
+        // the same rule as the first partition, from the current centres and estimated work
+        fdem::Simulation::Rebalance rb;
+        rb.every = opt.rebalance_every;
+        rb.imbalance = opt.imbalance;
+        const int32_t procs = g_comm->size();
+        if (opt.partition == "rcb") {
+#ifdef FDEM_HAVE_MPI
+            const auto* mpi = dynamic_cast<const fdem::MpiComm*>(g_comm);
+            rb.partition = [mpi](std::span<const fdem::Vec2> c, std::span<const double> w,
+                                 int64_t) { return fdem::rcb_group_owners(*mpi, c, w); };
+#endif
+        } else {
+            rb.partition = [rule = opt.partition, procs](std::span<const fdem::Vec2>,
+                                                         std::span<const double> w, int64_t round) {
+                return fdem::group_owners(w, rule, procs, static_cast<uint64_t>(round) + 1);
+            };
+        }
+        sim.set_rebalance(std::move(rb));
     }
     sim.open_output("", opt.out_given ? std::string("--out") : std::string());
     const std::string out = sim.output_dir();
@@ -473,6 +495,17 @@ int run(const RunOptions& opt) {
             } else if (!opt.quiet) {
                 fmt::print("processes  {} ({} partition); per process and step: {}\n",
                            g_comm->size(), opt.partition, path);
+            }
+            const fdem::Simulation::RebalanceStats& rs = sim.rebalance_stats();
+            if (!opt.quiet && opt.rebalance_every > 0) {
+                fmt::print(
+                    "rebalance  {} new partitions in {} checks (every {} broad-phase searches, "
+                    "at max/mean >= {:g} of the estimated work); max/mean at the last check "
+                    "{:.3f}, the worst {:.3f}\n",
+                    rs.rebalances, rs.checks, opt.rebalance_every, opt.imbalance, rs.last_imbalance,
+                    rs.worst_imbalance);
+            } else if (!opt.quiet) {
+                fmt::print("rebalance  off (--rebalance-every 0)\n");
             }
         }
     }
@@ -667,6 +700,27 @@ int main(int argc, char** argv) {
                      "(contiguous node ids) or random (a test: every choice gives the same "
                      "result); no effect on a one-process run")
         ->check(CLI::IsMember({"rcb", "ids", "random"}));
+    run_cmd
+        ->add_option("--rebalance-every", ro.rebalance_every,
+                     "distributed runs: compare the processes' estimated work every N "
+                     "broad-phase searches and repartition (same rule as --partition) when "
+                     "max/mean >= --imbalance (default 10; 0 = never); no effect on a "
+                     "one-process run")
+        ->check(CLI::Range(0, std::numeric_limits<int>::max()));
+    run_cmd
+        ->add_option("--imbalance", ro.imbalance,
+                     "distributed runs: the max/mean of the processes' estimated work that "
+                     "repartitions (default 1.1; 1 = at every check)")
+        ->check(CLI::Validator(
+            [](const std::string& text) -> std::string {
+                char* end = nullptr;
+                const double d = std::strtod(text.c_str(), &end);
+                if (end == text.c_str() || *end != '\0' || !std::isfinite(d) || d < 1) {
+                    return fmt::format("expected a finite ratio >= 1, got '{}'", text);
+                }
+                return "";
+            },
+            "RATIO >= 1", "ratio"));
     run_cmd
         ->add_option("--progress-every", ro.progress_every,
                      "when stderr is not a terminal: a progress line every S wall-clock seconds "

@@ -21,7 +21,9 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "fdem/checks.hpp"
 #include "fdem/model.hpp"
@@ -102,6 +104,37 @@ public:
     /// ids; e.g. parallel/mpi/rcb.hpp rcb_group_owners()), the same on every process; empty:
     /// contiguous ranges of node ids. Any assignment gives the same bits.
     void distribute(const Comm& comm, const std::vector<int32_t>& group_owner = {});
+
+    /// Load balancing of a distributed run (spec D10, docs/parallel.md "Rebalancing"): after
+    /// every `every`-th broad-phase search the processes compare their estimated work per step
+    /// (parallel/decompose.hpp estimated_work(): triangles run, candidate pairs, pairs in
+    /// contact); when max / mean >= imbalance, every process gathers the whole State (x, v, f,
+    /// the candidate pairs) and the node groups get new owners from `partition`, called with
+    /// every group's centre at the current positions and its estimated work
+    /// (node_group_work()) and the number of partitions made before. The result does not depend
+    /// on the partition: the run stays bitwise the one-process run.
+    struct Rebalance {
+        int32_t every = 0;       ///< broad-phase searches between checks; 0: never
+        double imbalance = 1.1;  ///< the max / mean of the estimated work that rebalances (>= 1)
+        /// the process of every node group, the same on every process (it may be collective)
+        std::function<std::vector<int32_t>(std::span<const Vec2> centre,
+                                           std::span<const double> weight, int64_t round)>
+            partition;
+    };
+    /// Set the load balancing of a distributed run (after distribute()); no effect on a
+    /// one-process run. Throws std::invalid_argument for every < 0, imbalance < 1 (or not
+    /// finite) or every > 0 without a partition function.
+    void set_rebalance(Rebalance r);
+    /// What the load balancing did so far in this object (not saved in checkpoints).
+    struct RebalanceStats {
+        int64_t checks = 0;          ///< imbalance evaluations
+        int64_t rebalances = 0;      ///< new partitions adopted
+        double last_imbalance = 1;   ///< max / mean estimated work at the last check
+        double worst_imbalance = 1;  ///< the largest max / mean of any check
+        double planned_after = 1;  ///< max / mean of the group weights under the last new partition
+        int64_t last_step = -1;    ///< step after which the last new partition was adopted
+    };
+    const RebalanceStats& rebalance_stats() const;
     bool output_open() const;
     const std::string& output_dir() const;  ///< "" while output is not open
     int64_t frames_written() const;         ///< output rows/frames so far (also before restart)

@@ -154,9 +154,21 @@ add_test(NAME cli.decompose_unwritable_csv_exits_2
                  "-DARGS=decompose;${cli_dir}/crush.toml;--parts;2;--partition;ids;--csv;/no_such_dir/x.csv"
                  "-DREGEX=--csv.*cannot write \"/no_such_dir/x.csv\": No such file or directory; expected a writable file path"
                  -P ${cli_dir}/expect_exit.cmake)
+# load balancing of distributed runs (spec D10): bad values exit 2 naming the option and value
+add_test(NAME cli.run_imbalance_below_one_exits_2
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=2
+                 "-DARGS=run;${cli_dir}/crush.toml;--imbalance;0.5"
+                 "-DREGEX=--imbalance: expected a finite ratio >= 1, got '0.5'"
+                 -P ${cli_dir}/expect_exit.cmake)
+add_test(NAME cli.run_negative_rebalance_every_exits_2
+         COMMAND ${CMAKE_COMMAND} -DFDEM=$<TARGET_FILE:fdem_cli> -DRC=2
+                 "-DARGS=run;${cli_dir}/crush.toml;--rebalance-every;-1"
+                 "-DREGEX=--rebalance-every: Value -1 not in range 0 to 2147483647"
+                 -P ${cli_dir}/expect_exit.cmake)
 add_test(NAME cli.decompose_prints_parts
          COMMAND fdem_cli decompose ${cli_dir}/crush.toml --parts 1,3 --partition ids)
 set_tests_properties(cli.decompose_prints_parts PROPERTIES PASS_REGULAR_EXPRESSION
   "parts     1 \\(ids.*\nparts     3 \\(ids, [0-9.]+ s\\): nodes per part [0-9]+ mean")
 set_tests_properties(cli.decompose_zero_parts_exits_2 cli.decompose_unknown_partition_exits_2
-  cli.decompose_unwritable_csv_exits_2 cli.decompose_prints_parts PROPERTIES LABELS input)
+  cli.decompose_unwritable_csv_exits_2 cli.decompose_prints_parts cli.run_imbalance_below_one_exits_2
+  cli.run_negative_rebalance_every_exits_2 PROPERTIES LABELS input)

@@ -13,7 +13,7 @@ fail=0
 for np in $nps; do
     "$mpiexec" --oversubscribe --bind-to none --mca btl self,vader -np "$np" \
         "$fdem" run "$scenario" --quiet --out "$out/np$np" --end-time "$end" \
-        --partition "$partition" 2>/dev/null
+        --partition "$partition" --rebalance-every 0 2>/dev/null
     "$fdem" decompose "$scenario" --parts "$np" --partition "$partition" --end-time "$end" \
         --csv "$out/decompose$np.csv" 2>/dev/null | grep '^parts'
     if ! cmp "$out/np$np/partition.csv" "$out/decompose$np.csv"; then

@@ -84,6 +84,28 @@ foreach(part "random:4" "ids:3")
   set_tests_properties(mpi.same_as_serial.partition_${how} PROPERTIES LABELS mpi TIMEOUT 300
                        PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
 endforeach()
+# D10 / T3 with load balancing: a new partition at every broad-phase search (Zoltan RCB of the
+# groups' current centres weighted by their estimated work, a new random draw, or weighted
+# contiguous ids), so node groups, candidate pairs and the element halo change owners hundreds
+# of times; and a ring fracturing into fragments (11) whose node groups move between processes
+# as it breaks. Bitwise the serial run, and at least one new partition made.
+foreach(case "04_rcb:04_particles:3:rcb:1e-3" "04_random:04_particles:4:random:1e-3"
+        "04_ids:04_particles:2:ids:1e-3" "11_rcb:11_impact_fragmentation:3:rcb:1e-4")
+  string(REPLACE ":" ";" case "${case}")
+  list(GET case 0 name)
+  list(GET case 1 example)
+  list(GET case 2 np)
+  list(GET case 3 how)
+  list(GET case 4 end)
+  add_test(NAME mpi.same_as_serial.rebalance_${name}
+           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                   ${mpi_dir}/rebalance.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                   ${ex}/${example}/scenario.toml ${mpi_out}/rebalance_${name} "${np}" ${how}
+                   --end-time ${end})
+  set_tests_properties(mpi.same_as_serial.rebalance_${name} PROPERTIES LABELS mpi TIMEOUT 300
+                       PROCESSORS 2 PASS_REGULAR_EXPRESSION
+                       "OK: bitwise the serial run through every rebalance")
+endforeach()
 # D12 with the local broad phase: each process holds its own targets' candidate pairs, and the
 # checkpoint of a distributed run is still byte for byte the serial one (the lists gathered)
 foreach(case "04_particles:1e-3:4e-4:2 3 4" "08_brazilian_disc:4e-6:2e-6:3")

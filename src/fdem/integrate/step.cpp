@@ -33,6 +33,7 @@
 #include "integrate/fracture_update.hpp"
 #include "integrate/loads.hpp"
 #include "integrate/node_update.hpp"
+#include "parallel/decompose.hpp"
 #include "parallel/distributed.hpp"
 
 namespace fdem {
@@ -575,6 +576,33 @@ void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<do
     }
     for (const auto& t : m.tri_nodes)
         weight[static_cast<size_t>(t[0] / kNodeGroup)] += 1.0;
+}
+
+void node_group_work(const Model& m, const State& s, std::vector<Vec2>& centre,
+                     std::vector<double>& weight) {
+    const NodeId nn = m.num_nodes();
+    const NodeId groups = (nn + kNodeGroup - 1) / kNodeGroup;
+    centre.assign(static_cast<size_t>(groups), Vec2{});
+    weight.assign(static_cast<size_t>(groups), 1.0);
+    for (NodeId g = 0; g < groups; ++g) {
+        const NodeId b = g * kNodeGroup, e = std::min(nn, b + kNodeGroup);
+        Vec2 c;
+        for (NodeId i = b; i < e; ++i)
+            c += s.x[i];
+        centre[static_cast<size_t>(g)] = (1.0 / static_cast<Real>(e - b)) * c;
+    }
+    for (const Body& b : m.bodies) {
+        if (b.fixed) continue;  // (no element forces: outside the element chunks)
+        for (TriId t = b.tri_begin; t < b.tri_end; ++t)
+            weight[static_cast<size_t>(m.tri_nodes[t][0] / kNodeGroup)] += kWorkPerTriangle;
+    }
+    const ContactAlgorithm a = m.contact.algorithm;
+    if (a == ContactAlgorithm::None || a == ContactAlgorithm::LegacyTriangle) return;
+    const ContactTopology& ct = s.topology;
+    for (const NodeId j : s.contact.cand.node)
+        weight[static_cast<size_t>(target_node(ct, j) / kNodeGroup)] += kWorkPerCandidate;
+    for (const ActiveContact& c : s.contact.active)
+        weight[static_cast<size_t>(target_node(ct, c.node) / kNodeGroup)] += kWorkPerContact;
 }
 
 StepPlan make_part_plan(const Model& m, int32_t rank, int32_t procs,

@@ -142,6 +142,44 @@ std::vector<int32_t> group_owners(const Model& m, const std::string& rule, int32
     return owner;
 }
 
+std::vector<int32_t> group_owners(std::span<const double> weight, const std::string& rule,
+                                  int32_t parts, uint64_t round) {
+    if (parts < 1) throw std::invalid_argument("group_owners: parts must be >= 1");
+    const size_t groups = weight.size();
+    std::vector<int32_t> owner(groups, 0);
+    if (rule == "random") {
+        uint64_t h = 0x9e3779b97f4a7c15ull + 0x632be59bd9b4e019ull * round;
+        for (size_t g = 0; g < groups; ++g) {
+            h ^= h >> 31;
+            h *= 0xbf58476d1ce4e5b9ull;
+            h ^= h >> 27;
+            owner[g] = static_cast<int32_t>(h % static_cast<uint64_t>(parts));
+        }
+    } else if (rule == "ids") {
+        // part r takes the groups whose weight midpoint lies in [W r / P, W (r + 1) / P):
+        // contiguous, in id order, about W / P each
+        double total = 0;
+        for (const double w : weight)
+            total += w;
+        double before = 0;
+        for (size_t g = 0; g < groups; ++g) {
+            const double mid = before + 0.5 * weight[g];
+            before += weight[g];
+            const double share = total > 0 ? mid / total : 0.0;
+            owner[g] = std::clamp(static_cast<int32_t>(share * parts), int32_t{0}, parts - 1);
+        }
+    } else {
+        throw std::invalid_argument("group_owners: unknown rule \"" + rule + "\"");
+    }
+    return owner;
+}
+
+double estimated_work(const PartCounts& c) {
+    return kWorkPerTriangle * static_cast<double>(c.tris_run) +
+           kWorkPerCandidate * static_cast<double>(c.candidate_pairs) +
+           kWorkPerContact * static_cast<double>(c.contact_records);
+}
+
 int64_t ghost_bytes_in(const PartCounts& c) {
     return kGhostBytes * c.ghost_nodes;
 }

@@ -55,6 +55,28 @@ std::vector<PartCounts> decompose(const Model& m, const State& s,
 /// "random" (a fixed hash of the group id: a test of partition independence, spec T3).
 std::vector<int32_t> group_owners(const Model& m, const std::string& rule, int32_t parts);
 
+/// The same rules for a new partition of a running model (rebalancing, spec D10), from every
+/// node group's estimated work per step (node_group_work()): "ids" cuts the groups, in id order,
+/// into `parts` contiguous ranges of about equal summed weight (a part may get none when one
+/// group outweighs a share); "random" is the hash of group_owners() seeded by `round` (the count
+/// of partitions so far), so that each rebalance of a test moves the groups anew. Throws
+/// std::invalid_argument for another rule or parts < 1.
+std::vector<int32_t> group_owners(std::span<const double> weight, const std::string& rule,
+                                  int32_t parts, uint64_t round);
+
+/// Estimated cost of one step on one core [ns], by what the step does per item (docs/
+/// performance.md, one thread): the element pass and node update per triangle run
+/// (BM_StepNoEnergy: 7 ns), a candidate pair the narrow phase rejects (BM_NarrowPhaseSplit:
+/// 3-7 ns) and a pair in contact (87-150 ns). The weights of load balancing (spec D10): only
+/// their ratios matter.
+inline constexpr double kWorkPerTriangle = 7.0;
+inline constexpr double kWorkPerCandidate = 4.0;
+inline constexpr double kWorkPerContact = 100.0;
+
+/// A part's estimated work per step [ns]: the weights above times its triangles run (on steps
+/// without energies), its candidate pairs and its pairs in contact.
+double estimated_work(const PartCounts& c);
+
 /// partition.csv: a header line and one row per part (the fields of PartCounts, then the bytes
 /// per step it receives and sends point to point and all-gathers).
 std::string partition_csv(std::span<const PartCounts> parts);

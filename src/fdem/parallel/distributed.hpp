@@ -104,6 +104,15 @@ void check_state_distributed(const Model& m, const State& s, const StepPlan& pla
 /// input of a partitioner (parallel/mpi/rcb.hpp rcb_group_owners()).
 void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<double>& weight);
 
+/// The input of a new partition of a running model (rebalancing, spec D10): the centre of each
+/// node group at the current positions s.x and its estimated work per step [ns]
+/// (decompose.hpp: kWorkPerTriangle per triangle of a movable body its nodes start,
+/// kWorkPerCandidate per candidate pair and kWorkPerContact per pair in contact whose target node
+/// it holds, + 1). s must be complete (every node's x, the serial candidate list: Simulation
+/// gathers them first), so that every process computes the same values.
+void node_group_work(const Model& m, const State& s, std::vector<Vec2>& centre,
+                     std::vector<double>& weight);
+
 /// The plan of process `rank` of `procs`. group_owner: the process of every node group (any
 /// assignment gives the same bits: spec D10); empty: contiguous ranges of about the same
 /// number of groups each.

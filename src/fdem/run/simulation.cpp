@@ -1,6 +1,7 @@
 // The run loop (include/fdem/simulation.hpp; docs/architecture.md "The run loop").
 #include "fdem/simulation.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cmath>
@@ -67,6 +68,10 @@ struct Simulation::Impl {
     std::unique_ptr<StepPlan> plan;
     VtuPiece piece;  ///< this process's piece of the frames (frame_in_pieces())
     bool writes = true;
+    Rebalance rebalance;         ///< load balancing of a distributed run (set_rebalance())
+    RebalanceStats rebalanced;   ///< what it did
+    int64_t searches_seen = 0;   ///< broad-phase searches at the last look
+    int64_t searches_since = 0;  ///< broad-phase searches since the last imbalance check
 
     Impl(std::string n, Model&& m, RunSettings r)
         : name(std::move(n)),
@@ -301,6 +306,7 @@ struct Simulation::Impl {
         }
         if (fracture) fracture->after_step(m, s, step_before, time_before);
         if (resultants) resultants->accumulate(m, s, prog.impulses);
+        if (plan) maybe_rebalance();
         const std::string warning = check_run(m, s, run, prog.energy);
         if (!warning.empty() && warnings++ == 0) {
             first_warning = warning;
@@ -330,6 +336,70 @@ struct Simulation::Impl {
         }
         if (stop_asked && out && !checkpoint_due) write_checkpoint_file(checkpoint_path());
         return stop_asked;
+    }
+
+    /// The broad-phase searches so far (the same count on every process).
+    int64_t broad_phase_searches() const {
+        const ContactAlgorithm a = model.contact.algorithm;
+        if (a == ContactAlgorithm::None) return 0;
+        return a == ContactAlgorithm::LegacyTriangle ? state.contact.legacy.rebuilds
+                                                     : state.contact.rebuilds;
+    }
+
+    /// Spec D10, after a step of a distributed run: on the every-th broad-phase search, the
+    /// imbalance of the estimated work; above the threshold, a new partition. Every decision
+    /// depends on replicated values only (the search count, reduced work), so every process
+    /// takes the same branch and the collectives match. Collective.
+    void maybe_rebalance() {
+        if (rebalance.every <= 0 || comm->size() < 2) return;
+        const int64_t searches = broad_phase_searches();
+        if (searches == searches_seen) return;
+        searches_since += searches - searches_seen;
+        searches_seen = searches;
+        if (searches_since < rebalance.every) return;
+        searches_since = 0;
+        // (whole ns on both sides, so that max >= mean holds exactly)
+        const int64_t mine = std::llround(estimated_work(part_counts(model, state, *plan)));
+        const double most = comm->max(static_cast<double>(mine));
+        const int64_t total = comm->sum(mine);
+        const double mean = static_cast<double>(total) / comm->size();
+        const double ratio = mean > 0 ? most / mean : 1.0;
+        ++rebalanced.checks;
+        rebalanced.last_imbalance = ratio;
+        rebalanced.worst_imbalance = std::max(rebalanced.worst_imbalance, ratio);
+        if (!(ratio >= rebalance.imbalance)) return;
+        // the whole State on every process, then the new owners and the plan for them; the
+        // serial candidate list stays until the next search (the owner filters of the step
+        // keep it correct, as after a restore)
+        complete_state(true);
+        std::vector<Vec2> centre;
+        std::vector<double> weight;
+        node_group_work(model, state, centre, weight);
+        std::vector<int32_t> owner = rebalance.partition(centre, weight, rebalanced.rebalances);
+        if (owner.size() != weight.size()) {
+            throw std::runtime_error("rebalance: the partition gave " +
+                                     std::to_string(owner.size()) + " owners for " +
+                                     std::to_string(weight.size()) + " node groups");
+        }
+        std::vector<double> part(static_cast<size_t>(comm->size()), 0.0);
+        for (size_t g = 0; g < owner.size(); ++g) {
+            if (owner[g] < 0 || owner[g] >= comm->size()) {
+                throw std::runtime_error("rebalance: the partition gave a node group to process " +
+                                         std::to_string(owner[g]));
+            }
+            part[static_cast<size_t>(owner[g])] += weight[g];
+        }
+        double part_sum = 0, part_max = 0;
+        for (const double w : part) {
+            part_sum += w;
+            part_max = std::max(part_max, w);
+        }
+        plan = std::make_unique<StepPlan>(make_step_plan(model, comm->rank(), comm->size(), owner));
+        plan->contact.total_candidates = static_cast<int64_t>(state.contact.cand.node.size());
+        piece = make_vtu_piece(model, plan->node_owner, comm->rank());
+        ++rebalanced.rebalances;
+        rebalanced.planned_after = part_sum > 0 ? part_max * comm->size() / part_sum : 1.0;
+        rebalanced.last_step = state.step;
     }
 
     void write_failure() {
@@ -446,6 +516,22 @@ void Simulation::distribute(const Comm& comm, const std::vector<int32_t>& group_
     I.plan->contact.total_candidates = static_cast<int64_t>(I.state.contact.cand.node.size());
 }
 
+void Simulation::set_rebalance(Rebalance r) {
+    if (r.every < 0) throw std::invalid_argument("set_rebalance: every must be >= 0");
+    if (!(r.imbalance >= 1) || !std::isfinite(r.imbalance))
+        throw std::invalid_argument("set_rebalance: imbalance must be a finite number >= 1");
+    if (r.every > 0 && !r.partition)
+        throw std::invalid_argument("set_rebalance: every > 0 needs a partition function");
+    Impl& I = *impl_;
+    I.rebalance = std::move(r);
+    I.searches_seen = I.broad_phase_searches();
+    I.searches_since = 0;
+}
+
+const Simulation::RebalanceStats& Simulation::rebalance_stats() const {
+    return impl_->rebalanced;
+}
+
 bool Simulation::output_open() const {
     return !impl_->out_dir.empty();
 }
@@ -497,6 +583,10 @@ void Simulation::restore_checkpoint(const std::string& path) {
         // the file holds the serial list (every process has it until its next broad phase)
         I.plan->contact.total_candidates = static_cast<int64_t>(I.state.contact.cand.node.size());
     }
+    // the partition of distribute() was made from the reference positions: check the balance
+    // at the first broad-phase search of the continued run
+    I.searches_seen = I.broad_phase_searches();
+    I.searches_since = std::max(0, I.rebalance.every - 1);
 }
 
 int64_t Simulation::steps_to(Real t) const {

@@ -3,6 +3,8 @@
 // (the equality with what real processes exchange is the MPI test mpi.decompose_matches_run.*).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 #include <vector>
 
@@ -10,6 +12,7 @@
 #include "fdem/simulate.hpp"
 #include "integrate/node_update.hpp"
 #include "parallel/decompose.hpp"
+#include "parallel/distributed.hpp"
 #include "support/scenes.hpp"
 
 namespace fdem {
@@ -156,6 +159,112 @@ TEST(Decompose, GroupOwnerRules) {
     EXPECT_THROW(group_owners(sc.m, "metis", 4), std::invalid_argument);
     EXPECT_THROW(decompose(sc.m, sc.s, std::vector<int32_t>(ids.size(), 4), 4),
                  std::invalid_argument);  // an owner out of range
+}
+
+// Rebalancing (spec D10): the rules from weights. "ids": contiguous ranges whose sums differ from
+// the mean by at most one group's weight; "random": in range, and another draw per round.
+TEST(Decompose, WeightedGroupOwnerRules) {
+    std::vector<double> w(200);
+    for (size_t g = 0; g < w.size(); ++g)
+        w[g] = 1.0 + static_cast<double>((g * 37) % 11) + (g >= 150 ? 40.0 : 0.0);
+    double total = 0, biggest = 0;
+    for (const double x : w) {
+        total += x;
+        biggest = std::max(biggest, x);
+    }
+    for (const int32_t P : {1, 2, 3, 7}) {
+        SCOPED_TRACE(P);
+        const std::vector<int32_t> ids = group_owners(w, "ids", P, 5);
+        ASSERT_EQ(ids.size(), w.size());
+        EXPECT_EQ(ids.front(), 0);
+        EXPECT_EQ(ids.back(), P - 1);
+        std::vector<double> sum(static_cast<size_t>(P), 0.0);
+        for (size_t g = 0; g < w.size(); ++g) {
+            if (g > 0) {
+                EXPECT_LE(ids[g - 1], ids[g]);  // contiguous ranges
+            }
+            sum[static_cast<size_t>(ids[g])] += w[g];
+        }
+        for (const double s : sum)
+            EXPECT_LE(std::abs(s - total / P), biggest) << s;
+        // equal weights: the groups split as evenly as whole groups allow
+        const std::vector<int32_t> even = group_owners(std::vector<double>(10, 2.0), "ids", P, 0);
+        std::vector<int32_t> n(static_cast<size_t>(P), 0);
+        for (const int32_t o : even)
+            ++n[static_cast<size_t>(o)];
+        for (const int32_t k : n)
+            EXPECT_LE(std::abs(k - 10.0 / P), 1.0);
+    }
+    const std::vector<int32_t> r1 = group_owners(w, "random", 4, 1);
+    const std::vector<int32_t> r2 = group_owners(w, "random", 4, 2);
+    EXPECT_EQ(r1, group_owners(w, "random", 4, 1));  // a function of the round
+    EXPECT_NE(r1, r2);
+    EXPECT_EQ(std::set<int32_t>(r1.begin(), r1.end()), (std::set<int32_t>{0, 1, 2, 3}));
+    EXPECT_THROW(group_owners(w, "metis", 4, 0), std::invalid_argument);
+    EXPECT_THROW(group_owners(w, "ids", 0, 0), std::invalid_argument);
+}
+
+TEST(Decompose, EstimatedWorkWeighsTrianglesPairsAndContacts) {
+    PartCounts c;
+    c.tris_run = 1000;
+    c.candidate_pairs = 300;
+    c.contact_records = 20;
+    c.ghost_nodes = 999;  // (communication is not in the estimate)
+    EXPECT_DOUBLE_EQ(estimated_work(c),
+                     1000 * kWorkPerTriangle + 300 * kWorkPerCandidate + 20 * kWorkPerContact);
+    // a pair in contact costs more than a rejected candidate, which costs less than a triangle
+    EXPECT_GT(kWorkPerContact, kWorkPerTriangle);
+    EXPECT_LT(kWorkPerCandidate, kWorkPerTriangle);
+}
+
+// The input of a rebalance: the groups' centres at the current positions and their weights,
+// 1 + the estimated work of the movable triangles, candidate pairs and pairs in contact whose
+// node (an edge target: its first node) lies in the group
+TEST(Decompose, NodeGroupWorkAtTheCurrentPositions) {
+    Scene sc = particle_scene();
+    const Model& m = sc.m;
+    std::vector<Vec2> c0, c1;
+    std::vector<double> w0, w1;
+    node_group_work(m, sc.s, c0, w0);
+    for (Vec2& x : sc.s.x)
+        x += Vec2{0.25, -1.0};  // the centres follow the nodes; the weights stay
+    std::vector<Vec2> centre;
+    std::vector<double> weight;
+    node_group_work(m, sc.s, centre, weight);
+    const size_t groups = static_cast<size_t>((m.num_nodes() + kNodeGroup - 1) / kNodeGroup);
+    ASSERT_EQ(centre.size(), groups);
+    ASSERT_EQ(weight.size(), groups);
+    EXPECT_EQ(weight, w0);
+    for (size_t g = 0; g < groups; ++g) {
+        EXPECT_NEAR(centre[g].x, c0[g].x + 0.25, 1e-12);
+        EXPECT_NEAR(centre[g].y, c0[g].y - 1.0, 1e-12);
+    }
+    for (const size_t g : {size_t{0}, groups - 1}) {  // the mean of the group's positions
+        const NodeId b = static_cast<NodeId>(g) * kNodeGroup,
+                     e = std::min(m.num_nodes(), b + kNodeGroup);
+        Vec2 sum;
+        for (NodeId i = b; i < e; ++i)
+            sum += sc.s.x[i];
+        EXPECT_NEAR(centre[g].x, sum.x / (e - b), 1e-12);
+        EXPECT_NEAR(centre[g].y, sum.y / (e - b), 1e-12);
+    }
+    node_group_points(m, c1, w1);  // (the reference positions: not where the nodes are now)
+    EXPECT_NE(c1[0].x, c0[0].x);
+    std::vector<double> expect(groups, 1.0);
+    int64_t movable = 0;
+    for (const Body& b : m.bodies) {
+        if (b.fixed) continue;
+        for (TriId t = b.tri_begin; t < b.tri_end; ++t, ++movable)
+            expect[static_cast<size_t>(m.tri_nodes[t][0] / kNodeGroup)] += kWorkPerTriangle;
+    }
+    ASSERT_LT(movable, m.num_tris());  // the walls are fixed and cost nothing
+    const ContactTopology& ct = sc.s.topology;
+    for (const NodeId j : sc.s.contact.cand.node)
+        expect[static_cast<size_t>(target_node(ct, j) / kNodeGroup)] += kWorkPerCandidate;
+    for (const ActiveContact& a : sc.s.contact.active)
+        expect[static_cast<size_t>(target_node(ct, a.node) / kNodeGroup)] += kWorkPerContact;
+    for (size_t g = 0; g < groups; ++g)
+        EXPECT_DOUBLE_EQ(weight[g], expect[g]) << g;
 }
 
 TEST(Decompose, CsvHasAHeaderAndARowPerPart) {

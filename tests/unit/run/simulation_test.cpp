@@ -4,6 +4,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -142,6 +145,36 @@ TEST(Simulation, FailureIsTypedAndWritesFailureVtu) {
     }
     EXPECT_TRUE(fs::exists(sim.failure_file().path)) << sim.failure_write_error();
     EXPECT_EQ(sim.failure_file().step, sim.state().step);
+}
+
+// set_rebalance() (spec D10): bad settings are refused; on a one-process run it changes nothing
+TEST(Simulation, RebalanceSettingsAreCheckedAndIdleOnOneProcess) {
+    Simulation sim = Simulation::from_file(kDemo);
+    Simulation::Rebalance bad;
+    bad.every = -1;
+    EXPECT_THROW(sim.set_rebalance(bad), std::invalid_argument);
+    bad.every = 1;  // no partition function
+    EXPECT_THROW(sim.set_rebalance(bad), std::invalid_argument);
+    bad.partition = [](std::span<const Vec2>, std::span<const double> w, int64_t) {
+        return std::vector<int32_t>(w.size(), 0);
+    };
+    bad.imbalance = 0.9;
+    EXPECT_THROW(sim.set_rebalance(bad), std::invalid_argument);
+    bad.imbalance = std::numeric_limits<double>::infinity();
+    EXPECT_THROW(sim.set_rebalance(bad), std::invalid_argument);
+    Simulation::Rebalance ok;
+    ok.every = 1;
+    ok.imbalance = 1;
+    int calls = 0;
+    ok.partition = [&calls](std::span<const Vec2>, std::span<const double> w, int64_t) {
+        ++calls;
+        return std::vector<int32_t>(w.size(), 0);
+    };
+    sim.set_rebalance(ok);
+    sim.run(kShort);
+    EXPECT_GT(sim.contact_counts().broad_phase_runs, 1);
+    EXPECT_EQ(calls, 0);
+    EXPECT_EQ(sim.rebalance_stats().checks, 0);
 }
 
 TEST(Simulation, RunAllocatesNothingAfterWarmUp) {

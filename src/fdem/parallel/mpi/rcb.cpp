@@ -115,6 +115,14 @@ std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m, int p
     std::vector<Vec2> centre;
     std::vector<double> weight;
     node_group_points(m, centre, weight);
+    return rcb_group_owners(comm, centre, weight, parts);
+}
+
+std::vector<int32_t> rcb_group_owners(const MpiComm& comm, std::span<const Vec2> centre,
+                                      std::span<const double> weight, int parts) {
+    if (weight.size() != centre.size()) {
+        throw std::invalid_argument("rcb_group_owners: centre and weight differ in length");
+    }
     const size_t groups = centre.size();
     const int P = comm.size(), r = comm.rank();
     const size_t b = groups * static_cast<size_t>(r) / static_cast<size_t>(P);
@@ -122,9 +130,8 @@ std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m, int p
     std::vector<uint64_t> gid(e - b);
     for (size_t g = b; g < e; ++g)
         gid[g - b] = g;
-    const std::vector<int> part =
-        rcb_parts(comm, std::span<const Vec2>(centre).subspan(b, e - b),
-                  std::span<const double>(weight).subspan(b, e - b), gid, parts > 0 ? parts : P);
+    const std::vector<int> part = rcb_parts(comm, centre.subspan(b, e - b),
+                                            weight.subspan(b, e - b), gid, parts > 0 ? parts : P);
     std::vector<char> mine(part.size() * sizeof(int32_t)), all;
     for (size_t k = 0; k < part.size(); ++k) {
         const int32_t p = part[k];

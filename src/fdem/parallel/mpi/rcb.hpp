@@ -28,4 +28,10 @@ std::vector<int> rcb_parts(const MpiComm& comm, std::span<const Vec2> x,
 /// parts (`fdem decompose`) gives the owners of P processes. Collective.
 std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m, int parts = 0);
 
+/// The same from given centres and weights of the node groups (the same on every process), e.g.
+/// the current positions and estimated work of a running model (distributed.hpp
+/// node_group_work(): rebalancing, spec D10). Collective.
+std::vector<int32_t> rcb_group_owners(const MpiComm& comm, std::span<const Vec2> centre,
+                                      std::span<const double> weight, int parts = 0);
+
 }  // namespace fdem
