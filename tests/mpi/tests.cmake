@@ -28,7 +28,7 @@ endif()
 file(GLOB mpi_test_srcs CONFIGURE_DEPENDS ${mpi_dir}/*_test.cpp)
 add_executable(fdem_mpi_tests ${mpi_dir}/main.cpp ${mpi_test_srcs})
 target_link_libraries(fdem_mpi_tests PRIVATE fdem_mpi GTest::gtest)
-target_include_directories(fdem_mpi_tests PRIVATE ${PROJECT_SOURCE_DIR}/src/fdem)
+target_include_directories(fdem_mpi_tests PRIVATE ${PROJECT_SOURCE_DIR}/src/fdem ${PROJECT_SOURCE_DIR}/tests)
 
 set(FDEM_MPIRUN ${MPIEXEC_EXECUTABLE} --oversubscribe --bind-to none --mca btl self,vader)
 set(FDEM_MPI_ENV OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1

@@ -1008,7 +1008,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         size_t n_mine = 0;
         for (int32_t ch = 0; ch < kPairChunks; ++ch)
             n_mine += static_cast<size_t>(chunk_count[ch]);
-        send.resize(n_mine * kRec);
+        resize_grow(send, n_mine * kRec);
         char* w = send.data();
         for (int32_t ch = 0; ch < kPairChunks; ++ch) {
             for (int32_t k = span_begin[ch]; k < span_begin[ch] + chunk_count[ch]; ++k) {
@@ -1029,8 +1029,8 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         }
         out = cs.pair_out.data();
         in_contact = cs.in_contact.data();
-        share->rec_node.resize(n_all);
-        share->rec_body.resize(n_all);
+        resize_grow(share->rec_node, n_all);
+        resize_grow(share->rec_body, n_all);
         NodeId* rnode = share->rec_node.data();
         BodyId* rbody = share->rec_body.data();
         const char* r = share->recv.data();
@@ -1046,7 +1046,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         span_begin[0] = 0;
         span_count[0] = static_cast<int32_t>(n_all);
         std::vector<int32_t>& order = share->order;
-        order.resize(n_all);
+        resize_grow(order, n_all);
         for (size_t k = 0; k < n_all; ++k)
             order[k] = static_cast<int32_t>(k);
         std::sort(order.begin(), order.end(), [rnode, rbody](int32_t a, int32_t b) {

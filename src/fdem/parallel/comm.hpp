@@ -5,6 +5,8 @@
 // order.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -50,6 +52,16 @@ public:
     virtual void broadcast(std::string& text, int root) const = 0;
     virtual void barrier() const = 0;
 };
+
+/// v.resize(n), growing the capacity at least twofold when it grows: buffers whose size follows
+/// a count that rises slowly over a run (the pairs in contact of a distributed step) allocate
+/// O(log n) times, not at every new maximum (resize() of a vector that shrank in between grows
+/// the capacity only to about n). Spec T9: no allocation in a step after warm-up.
+template <class T>
+void resize_grow(std::vector<T>& v, size_t n) {
+    if (n > v.capacity()) v.reserve(std::max(n, 2 * v.capacity()));
+    v.resize(n);
+}
 
 /// One process: every reduction is the identity.
 class SerialComm final : public Comm {

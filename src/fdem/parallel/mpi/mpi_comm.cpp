@@ -93,7 +93,7 @@ void MpiComm::allgather_bytes(const std::vector<char>& mine, std::vector<char>& 
     }
     if (total > std::numeric_limits<int>::max())
         throw std::runtime_error("allgather_bytes: more than 2 GiB in one exchange");
-    all.resize(static_cast<size_t>(total));
+    resize_grow(all, static_cast<size_t>(total));
     MPI_Allgatherv(mine.data(), n, MPI_BYTE, all.data(), counts_.data(), displs_.data(), MPI_BYTE,
                    comm_);
 }
