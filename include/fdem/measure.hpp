@@ -66,6 +66,12 @@ public:
     /// After every step: add the step's contact resultant and reaction of every set, times the
     /// step's velocity increment time dt_v (dt/2 on the first step, theory eq. 5.1), to acc.
     void accumulate(const Model& m, const State& s, IntervalImpulses& acc) const;
+    /// The same for the sets k with mine[k] != 0 only (the others' impulses unchanged; acc.time
+    /// advances as above): a distributed run shares the sets between its processes.
+    void accumulate(const Model& m, const State& s, IntervalImpulses& acc,
+                    const std::vector<uint8_t>& mine) const;
+    /// The work of accumulate() for one set per step: the nodes and slots it sums over (+ 1).
+    int64_t set_cost(int32_t set) const;
 
     /// Values of every set for the state after a step (out: num_sets() entries); the averages
     /// are acc / acc.time (the last instant values where acc.time is 0).

@@ -147,6 +147,25 @@ void Resultants::accumulate(const Model& m, const State& s, IntervalImpulses& ac
     acc.time += dt_v;
 }
 
+void Resultants::accumulate(const Model& m, const State& s, IntervalImpulses& acc,
+                            const std::vector<uint8_t>& mine) const {
+    const Real dt_v = s.step == 1 ? 0.5 * s.dt : s.dt;  // (as above)
+    for (int32_t k = 0; k < num_sets(); ++k) {
+        if (!mine[static_cast<size_t>(k)]) continue;
+        Vec2 c, r;
+        forces(m, s, k, c, r);
+        acc.contact[static_cast<size_t>(k)] += dt_v * c;
+        acc.reaction[static_cast<size_t>(k)] += dt_v * r;
+    }
+    acc.time += dt_v;
+}
+
+int64_t Resultants::set_cost(int32_t set) const {
+    const Set& st = sets_[static_cast<size_t>(set)];
+    return static_cast<int64_t>(st.force_nodes.size() + st.slots.size() + st.fixed_nodes.size()) +
+           1;
+}
+
 void Resultants::evaluate(const Model& m, const State& s, const IntervalImpulses& acc,
                           SetValues* out) const {
     for (int32_t k = 0; k < num_sets(); ++k) {

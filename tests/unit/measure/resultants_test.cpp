@@ -1,0 +1,58 @@
+// Resultants (src/fdem/measure/resultants.cpp, theory §8): the accumulation of a subset of the
+// sets, as a distributed run shares them between its processes (run/simulation.cpp
+// share_resultants()), gives every set's impulse bit for bit as the accumulation of all sets.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "fdem/measure.hpp"
+#include "fdem/simulation.hpp"
+
+namespace fdem {
+namespace {
+
+const std::string kDemo = FDEM_SOURCE_DIR "/examples/03_contact_slide/scenario.toml";
+
+TEST(Resultants, SharedSetsSumTheSameBits) {
+    Simulation sim = Simulation::from_file(kDemo);
+    const Model& m = sim.model();
+    const State& s = sim.state();
+    const Resultants r(m, s.topology);
+    ASSERT_GE(r.num_sets(), 2);
+    IntervalImpulses all = r.make_impulses(), a = r.make_impulses(), b = r.make_impulses();
+    std::vector<uint8_t> mine_a(static_cast<size_t>(r.num_sets()), 0), mine_b;
+    for (size_t k = 0; k < mine_a.size(); k += 2)
+        mine_a[k] = 1;
+    for (const uint8_t f : mine_a)
+        mine_b.push_back(f ? 0 : 1);
+    while (sim.contact_counts().in_contact == 0 && s.time < 0.05)
+        sim.run(s.time + s.dt);  // until the bodies touch
+    for (int k = 0; k < 200; ++k) {
+        sim.run(s.time + s.dt);
+        r.accumulate(m, s, all);
+        r.accumulate(m, s, a, mine_a);
+        r.accumulate(m, s, b, mine_b);
+    }
+    bool some_contact = false;
+    for (int32_t k = 0; k < r.num_sets(); ++k) {
+        const IntervalImpulses& mine = mine_a[static_cast<size_t>(k)] ? a : b;
+        const IntervalImpulses& other = mine_a[static_cast<size_t>(k)] ? b : a;
+        const size_t i = static_cast<size_t>(k);
+        EXPECT_EQ(mine.contact[i].x, all.contact[i].x) << r.name(k);
+        EXPECT_EQ(mine.contact[i].y, all.contact[i].y) << r.name(k);
+        EXPECT_EQ(mine.reaction[i].x, all.reaction[i].x) << r.name(k);
+        EXPECT_EQ(mine.reaction[i].y, all.reaction[i].y) << r.name(k);
+        EXPECT_EQ(other.contact[i].x, 0.0);  // not summed there
+        EXPECT_EQ(other.reaction[i].y, 0.0);
+        some_contact = some_contact || all.contact[i].x != 0.0 || all.contact[i].y != 0.0;
+        EXPECT_GE(r.set_cost(k), 1);
+    }
+    EXPECT_GT(sim.contact_counts().in_contact, 0);
+    EXPECT_TRUE(some_contact);  // the block presses on the ground: the sums are not all zero
+    EXPECT_EQ(a.time, all.time);
+    EXPECT_EQ(b.time, all.time);
+}
+
+}  // namespace
+}  // namespace fdem
