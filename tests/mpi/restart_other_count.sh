@@ -1,11 +1,19 @@
 #!/usr/bin/env bash
-# Usage: restart_other_count.sh FDEM MPIEXEC SCENARIO OUT T_HALF T_END
+# Usage: restart_other_count.sh FDEM MPIEXEC SCENARIO OUT T_HALF T_END [fdem run options...]
 # T4 of spec parallel-and-python.md: -np 2 to T_HALF writing a checkpoint, then a restart with
 # -np 3 and one with 1 process to T_END: both final state hashes equal an uninterrupted
-# one-process run's, and the two restarted history.csv files are byte-identical.
+# one-process run's, and the two restarted history.csv files are byte-identical. The options
+# (e.g. --rebalance-every 1 --imbalance 1: a new partition at every search, before and after
+# the restart) go to the distributed runs.
 set -euo pipefail
 fdem=$1 mpiexec=$2 scenario=$3 out=$4 half=$5 end=$6
-mpi() { "$mpiexec" --oversubscribe --bind-to none --mca btl self,vader -np "$@"; }
+shift 6
+opts=("$@")
+mpi() {
+    local np=$1
+    shift
+    "$mpiexec" --oversubscribe --bind-to none --mca btl self,vader -np "$np" "$@" "${opts[@]}"
+}
 rm -rf "$out"
 mkdir -p "$out"
 ref=$("$fdem" run "$scenario" --quiet --print-hash --end-time "$end" --out "$out/ref" 2>/dev/null)

@@ -187,6 +187,16 @@ add_test(NAME mpi.restart_on_another_process_count
                  ${ex}/03_contact_slide/scenario.toml ${mpi_out}/restart 0.002 0.004)
 set_tests_properties(mpi.restart_on_another_process_count PROPERTIES LABELS mpi TIMEOUT 300
                      PASS_REGULAR_EXPRESSION "OK: restart on another process count is bitwise")
+# the same with a new partition at every broad-phase search before and after the restart (D10:
+# the restarted run starts from the reference partition and rebalances at its first search)
+add_test(NAME mpi.restart_on_another_process_count_rebalancing
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/restart_other_count.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${ex}/04_particles/scenario.toml ${mpi_out}/restart_rebalancing 5e-4 1e-3
+                 --rebalance-every 1 --imbalance 1)
+set_tests_properties(mpi.restart_on_another_process_count_rebalancing PROPERTIES LABELS mpi
+                     TIMEOUT 300 PASS_REGULAR_EXPRESSION
+                     "OK: restart on another process count is bitwise")
 # D9 for signals: SIGTERM to one process of two stops both after the same step with one
 # checkpoint; its restart is bitwise the uninterrupted run
 add_test(NAME mpi.signal_to_one_process_stops_all
