@@ -82,6 +82,9 @@ public:
     void forces(const Model& m, const State& s, int32_t set, Vec2& contact, Vec2& reaction) const;
 
 private:
+    /// accumulate() of every set (mine null) or of the sets with mine[k] != 0
+    void accumulate_sets(const Model& m, const State& s, IntervalImpulses& acc,
+                         const uint8_t* mine) const;
     struct Set {
         std::string name;
         std::vector<NodeId> nodes;         ///< group: its nodes; entry: empty (bodies below)

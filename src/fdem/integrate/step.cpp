@@ -562,8 +562,11 @@ void gather_forces(State& s, const StepPlan& plan, const Comm& comm) {
     gather_nodes(s.f.data(), plan, comm);
 }
 
-void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<double>& weight) {
-    const NodeId nn = m.num_nodes();
+namespace {
+// the centre of every node group (kNodeGroup consecutive ids) at the positions x, and a weight
+// of 1 per group
+void group_centres(NodeId nn, const Vec2* x, std::vector<Vec2>& centre,
+                   std::vector<double>& weight) {
     const NodeId groups = (nn + kNodeGroup - 1) / kNodeGroup;
     centre.assign(static_cast<size_t>(groups), Vec2{});
     weight.assign(static_cast<size_t>(groups), 1.0);
@@ -571,26 +574,21 @@ void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<do
         const NodeId b = g * kNodeGroup, e = std::min(nn, b + kNodeGroup);
         Vec2 c;
         for (NodeId i = b; i < e; ++i)
-            c += m.node_x0[static_cast<size_t>(i)];
+            c += x[i];
         centre[static_cast<size_t>(g)] = (1.0 / static_cast<Real>(e - b)) * c;
     }
+}
+}  // namespace
+
+void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<double>& weight) {
+    group_centres(m.num_nodes(), m.node_x0.data(), centre, weight);
     for (const auto& t : m.tri_nodes)
         weight[static_cast<size_t>(t[0] / kNodeGroup)] += 1.0;
 }
 
 void node_group_work(const Model& m, const State& s, std::vector<Vec2>& centre,
                      std::vector<double>& weight) {
-    const NodeId nn = m.num_nodes();
-    const NodeId groups = (nn + kNodeGroup - 1) / kNodeGroup;
-    centre.assign(static_cast<size_t>(groups), Vec2{});
-    weight.assign(static_cast<size_t>(groups), 1.0);
-    for (NodeId g = 0; g < groups; ++g) {
-        const NodeId b = g * kNodeGroup, e = std::min(nn, b + kNodeGroup);
-        Vec2 c;
-        for (NodeId i = b; i < e; ++i)
-            c += s.x[i];
-        centre[static_cast<size_t>(g)] = (1.0 / static_cast<Real>(e - b)) * c;
-    }
+    group_centres(m.num_nodes(), s.x.data(), centre, weight);
     for (const Body& b : m.bodies) {
         if (b.fixed) continue;  // (no element forces: outside the element chunks)
         for (TriId t = b.tri_begin; t < b.tri_end; ++t)

@@ -136,22 +136,20 @@ void Resultants::forces(const Model& m, const State& s, int32_t set, Vec2& conta
 }
 
 void Resultants::accumulate(const Model& m, const State& s, IntervalImpulses& acc) const {
-    // the step just taken advanced v by dt_v (f / m): dt/2 on the first step (theory eq. 5.1)
-    const Real dt_v = s.step == 1 ? 0.5 * s.dt : s.dt;
-    for (int32_t k = 0; k < num_sets(); ++k) {
-        Vec2 c, r;
-        forces(m, s, k, c, r);
-        acc.contact[static_cast<size_t>(k)] += dt_v * c;
-        acc.reaction[static_cast<size_t>(k)] += dt_v * r;
-    }
-    acc.time += dt_v;
+    accumulate_sets(m, s, acc, nullptr);
 }
 
 void Resultants::accumulate(const Model& m, const State& s, IntervalImpulses& acc,
                             const std::vector<uint8_t>& mine) const {
-    const Real dt_v = s.step == 1 ? 0.5 * s.dt : s.dt;  // (as above)
+    accumulate_sets(m, s, acc, mine.data());
+}
+
+void Resultants::accumulate_sets(const Model& m, const State& s, IntervalImpulses& acc,
+                                 const uint8_t* mine) const {
+    // the step just taken advanced v by dt_v (f / m): dt/2 on the first step (theory eq. 5.1)
+    const Real dt_v = s.step == 1 ? 0.5 * s.dt : s.dt;
     for (int32_t k = 0; k < num_sets(); ++k) {
-        if (!mine[static_cast<size_t>(k)]) continue;
+        if (mine != nullptr && !mine[k]) continue;
         Vec2 c, r;
         forces(m, s, k, c, r);
         acc.contact[static_cast<size_t>(k)] += dt_v * c;
