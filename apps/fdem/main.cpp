@@ -561,6 +561,9 @@ int decompose_command(const DecomposeOptions& opt, const fdem::Comm* rcb_comm) {
     using clock = std::chrono::steady_clock;
     fdem::Scenario sc = fdem::load_scenario(opt.scenario);
     print_warnings(sc);
+    // (a run that writes bodies.csv sums each set on one process, which then needs the contact
+    // forces of the set's nodes: they count in the exchange)
+    const bool bodies = sc.run.output.bodies;
     if (opt.threads > 0) omp_set_num_threads(opt.threads);
     if (opt.partition == "rcb" && rcb_comm == nullptr) {
         throw fdem::InputError({}, "--partition",
@@ -585,6 +588,8 @@ int decompose_command(const DecomposeOptions& opt, const fdem::Comm* rcb_comm) {
         m.num_nodes(), m.num_tris(), m.num_bodies(), s.step, s.time, t_run);
     const fdem::Simulation::ContactCounts cc = sim.contact_counts();
     fmt::print("contact    {} candidate pairs, {} in contact\n", cc.candidates, cc.in_contact);
+    std::unique_ptr<fdem::Resultants> sets;
+    if (bodies) sets = std::make_unique<fdem::Resultants>(m, s.topology);
     std::string csv;
     for (const int P : opt.parts) {
         const auto t1 = clock::now();
@@ -596,7 +601,7 @@ int decompose_command(const DecomposeOptions& opt, const fdem::Comm* rcb_comm) {
         } else {
             owner = fdem::group_owners(m, opt.partition, P);
         }
-        const std::vector<fdem::PartCounts> parts = fdem::decompose(m, s, owner, P);
+        const std::vector<fdem::PartCounts> parts = fdem::decompose(m, s, owner, P, sets.get());
         const double t_dec = std::chrono::duration<double>(clock::now() - t1).count();
         std::string rows = fdem::partition_csv(parts);
         csv += csv.empty() ? rows : rows.substr(rows.find('\n') + 1);
@@ -620,10 +625,14 @@ int decompose_command(const DecomposeOptions& opt, const fdem::Comm* rcb_comm) {
         });
         const auto [p_mean, p_max] =
             stat([](const fdem::PartCounts& c) { return c.candidate_pairs; });
-        int64_t gathered = 0, records = 0, counted = 0;
+        const auto [rec_mean, rec_max] = stat([](const fdem::PartCounts& c) {
+            return fdem::contact_bytes_in(c) + fdem::contact_bytes_out(c);
+        });
+        int64_t gathered = 0, records = 0, sent = 0, counted = 0;
         for (const fdem::PartCounts& c : parts) {
             gathered += fdem::gathered_bytes(c);
             records += c.contact_records;
+            sent += c.contact_sent;
             counted += c.tris_counted;  // the triangles of movable bodies, each counted once
         }
         const double T = static_cast<double>(counted);
@@ -631,10 +640,11 @@ int decompose_command(const DecomposeOptions& opt, const fdem::Comm* rcb_comm) {
             "parts {:>5} ({}, {:.1f} s): nodes per part {:.0f} mean / {:.0f} max; triangles run "
             "{:.0f} / {:.0f} ({:+.1f} % redundant); ghost nodes {:.0f} / {:.0f}; messages {:.1f} "
             "/ {:.0f}; point-to-point bytes in + out {:.0f} / {:.0f}; candidate pairs {:.0f} / "
-            "{:.0f}; all-gathered per step {} records, {} bytes to every part\n",
+            "{:.0f}; pairs in contact {}, {} record copies sent (bytes in + out {:.0f} / {:.0f}); "
+            "all-gathered per step {} bytes to every part\n",
             P, opt.partition, t_dec, n_mean, n_max, tr_mean, tr_max,
             T > 0 ? 100.0 * (tr_mean * P / T - 1.0) : 0.0, g_mean, g_max, msg_mean, msg_max, b_mean,
-            b_max, p_mean, p_max, records, gathered);
+            b_max, p_mean, p_max, records, sent, rec_mean, rec_max, gathered);
     }
     if (!opt.csv.empty()) {
         std::FILE* fp = std::fopen(opt.csv.c_str(), "w");

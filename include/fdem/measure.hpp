@@ -72,11 +72,18 @@ public:
                     const std::vector<uint8_t>& mine) const;
     /// The work of accumulate() for one set per step: the nodes and slots it sums over (+ 1).
     int64_t set_cost(int32_t set) const;
+    /// The process that sums each set in a run of `procs` processes: the sets by falling cost
+    /// (set_cost(), ties by id), each to the least loaded process so far (the first of equals).
+    std::vector<int32_t> set_ranks(int32_t procs) const;
 
     /// Values of every set for the state after a step (out: num_sets() entries); the averages
     /// are acc / acc.time (the last instant values where acc.time is 0).
     void evaluate(const Model& m, const State& s, const IntervalImpulses& acc,
                   SetValues* out) const;
+
+    /// The nodes whose f or f_contact forces() reads for one set, ascending (a distributed run
+    /// delivers their contact forces to the process that sums the set).
+    std::vector<NodeId> read_nodes(int32_t set) const;
 
     /// Contact resultant and reaction of one set for the last step [N/m].
     void forces(const Model& m, const State& s, int32_t set, Vec2& contact, Vec2& reaction) const;

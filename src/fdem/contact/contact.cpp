@@ -838,6 +838,377 @@ void probe_law_depths(const Model& m, State& s, std::span<const BodyId> dirty) {
     cs.rebase_pending = true;
 }
 
+// --- Local apply of a distributed run (issue #15, docs/parallel.md "Local apply") ---
+// A pair's forces reach its target (an edge target: both end nodes) and nodes of its contactor
+// body (vertices, virtual-node parents, welded copies: pair_span()). A process needs a node's
+// force if it owns the node or reads it every step (ContactShare::force_readers), so a pair's
+// record goes to the processes that need a node of its contactor body or of its target.
+
+// visit(r) for the owner of node i and every process that reads its force
+template <class Visit>
+inline void node_ranks(const StepPlan& plan, NodeId i, Visit&& visit) {
+    visit(plan.node_owner[static_cast<size_t>(i)]);
+    const auto& rd = plan.contact.force_readers;
+    if (rd.empty()) return;
+    auto it = std::lower_bound(rd.begin(), rd.end(), std::pair<NodeId, int32_t>{i, -1});
+    for (; it != rd.end() && it->first == i; ++it)
+        visit(it->second);
+}
+
+// visit(r) for every process that needs a node the forces of pair (j, c) reach (with repeats)
+template <class Visit>
+inline void pair_ranks(const ContactTopology& ct, const StepPlan& plan, NodeId j, BodyId c,
+                       Visit&& visit) {
+    const ContactShare& sh = plan.contact;
+    for (int32_t k = sh.body_rank_begin[static_cast<size_t>(c)];
+         k < sh.body_rank_begin[static_cast<size_t>(c) + 1]; ++k)
+        visit(sh.body_rank[static_cast<size_t>(k)]);
+    if (j < ct.num_real_nodes) {
+        node_ranks(plan, j, visit);
+        return;
+    }
+    const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
+    node_ranks(plan, e[0], visit);
+    node_ranks(plan, e[1], visit);
+}
+
+// ContactShare::need and the processes that need each body's nodes: from the plan's owners and
+// the force readers only (not the candidates), so once per plan or set of readers
+void plan_body_ranks(const Model& m, const StepPlan& plan) {
+    const ContactShare& sh = plan.contact;
+    const NodeId nn = m.num_nodes();
+    const int32_t me = plan.rank;
+    const auto& rd = sh.force_readers;
+    sh.need.assign(static_cast<size_t>(nn), 0);
+    for (NodeId i = 0; i < nn; ++i)
+        sh.need[static_cast<size_t>(i)] = plan.node_owner[static_cast<size_t>(i)] == me;
+    for (const auto& [i, r] : rd) {
+        if (r == me) sh.need[static_cast<size_t>(i)] = 1;
+    }
+    const BodyId nb = m.num_bodies();
+    sh.stamp.assign(static_cast<size_t>(plan.procs), -1);
+    sh.body_rank_begin.assign(static_cast<size_t>(nb) + 1, 0);
+    sh.body_rank.clear();
+    sh.body_solo.assign(static_cast<size_t>(nb), 0);
+    sh.body_all.assign(static_cast<size_t>(nb), 0);
+    for (BodyId b = 0; b < nb; ++b) {
+        const Body& body = m.bodies[static_cast<size_t>(b)];
+        const auto add = [&](int32_t r) {
+            if (sh.stamp[static_cast<size_t>(r)] == b) return;
+            sh.stamp[static_cast<size_t>(r)] = b;
+            sh.body_rank.push_back(r);
+        };
+        for (NodeId i = body.node_begin; i < body.node_end; ++i)
+            add(plan.node_owner[static_cast<size_t>(i)]);
+        if (!rd.empty()) {
+            auto it = std::lower_bound(rd.begin(), rd.end(),
+                                       std::pair<NodeId, int32_t>{body.node_begin, -1});
+            for (; it != rd.end() && it->first < body.node_end; ++it)
+                add(it->second);
+        }
+        const int32_t first = sh.body_rank_begin[static_cast<size_t>(b)];
+        std::sort(sh.body_rank.begin() + first, sh.body_rank.end());
+        sh.body_rank_begin[static_cast<size_t>(b) + 1] = static_cast<int32_t>(sh.body_rank.size());
+        sh.body_solo[static_cast<size_t>(b)] =
+            sh.body_rank.size() == static_cast<size_t>(first) + 1 &&
+            sh.body_rank[static_cast<size_t>(first)] == me;
+        bool all = true;
+        for (NodeId i = body.node_begin; i < body.node_end && all; ++i)
+            all = sh.need[static_cast<size_t>(i)] != 0;
+        sh.body_all[static_cast<size_t>(b)] = all;
+    }
+    sh.stamp.assign(static_cast<size_t>(plan.procs), -1);  // (free for the records' ticks)
+}
+
+// The processes this one may exchange records with until the next broad phase: those its own
+// candidate pairs may send to, and those whose candidate pairs may send to it (an all-gather
+// of the lists). Collective: every process calls it at the same step (after a broad phase or
+// with a new plan).
+// mark[q] = 1 for the other processes the records of plan's candidate pairs may go to
+void may_send_marks(const Model& m, const State& s, const StepPlan& plan,
+                    std::vector<uint8_t>& mark) {
+    const ContactShare& sh = plan.contact;
+    if (sh.body_rank_begin.size() != static_cast<size_t>(m.num_bodies()) + 1)
+        plan_body_ranks(m, plan);
+    const ContactTopology& ct = s.topology;
+    const Candidates& cand = s.contact.cand;
+    const int32_t me = plan.rank;
+    mark.assign(static_cast<size_t>(plan.procs), 0);
+    for (size_t pr = 0; pr < cand.node.size(); ++pr) {
+        const NodeId j = cand.node[pr];
+        if (plan.node_owner[static_cast<size_t>(target_node(ct, j))] != me) continue;
+        pair_ranks(ct, plan, j, cand.body[pr],
+                   [&](int32_t r) { mark[static_cast<size_t>(r)] = 1; });
+    }
+    mark[static_cast<size_t>(me)] = 0;
+}
+
+void plan_record_exchange(const Model& m, const State& s, const StepPlan& plan, const Comm& comm) {
+    const ContactShare& sh = plan.contact;
+    const int32_t me = plan.rank, procs = plan.procs;
+    std::vector<uint8_t> mark;
+    may_send_marks(m, s, plan, mark);
+    std::vector<int32_t> to;
+    for (int32_t r = 0; r < procs; ++r) {
+        if (mark[static_cast<size_t>(r)]) to.push_back(r);
+    }
+    // [count][ranks...] of every process
+    std::vector<char> mine((to.size() + 1) * sizeof(int32_t)), all;
+    const int32_t n_to = static_cast<int32_t>(to.size());
+    std::memcpy(mine.data(), &n_to, sizeof n_to);
+    if (n_to > 0) std::memcpy(mine.data() + sizeof n_to, to.data(), to.size() * sizeof(int32_t));
+    comm.allgather_bytes(mine, all);
+    std::vector<int32_t> w(all.size() / sizeof(int32_t));
+    std::memcpy(w.data(), all.data(), w.size() * sizeof(int32_t));
+    size_t at = 0;
+    for (int32_t q = 0; q < procs; ++q) {
+        const int32_t n = w[at++];
+        for (int32_t k = 0; k < n; ++k) {
+            if (q != me && w[at + static_cast<size_t>(k)] == me) mark[static_cast<size_t>(q)] = 1;
+        }
+        at += static_cast<size_t>(n);
+    }
+    sh.neighbours.clear();
+    for (int32_t r = 0; r < procs; ++r) {
+        if (mark[static_cast<size_t>(r)]) sh.neighbours.push_back(r);
+    }
+    const size_t p = static_cast<size_t>(procs);
+    sh.send_counts.assign(p, 0);
+    sh.send_displs.assign(p, 0);
+    sh.recv_counts.assign(p, 0);
+    sh.recv_displs.assign(p, 0);
+    sh.dest_valid = true;
+}
+
+// The forces of the pairs in contact of a distributed step: this process's own pairs (own_k[p]:
+// the narrow phase's output index of its p-th pair in pair order) go as records to the
+// processes that need a node they reach; the records received from the others are merged with
+// them in pair order ((node, body): each pair has one owner, so the keys are distinct), and the
+// forces of all of them are added to the nodes this process needs, in that order: every such
+// node receives the adds of the serial loop in its order. Collective.
+void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& plan,
+                   const Comm& comm, State& s, const int32_t* own_k, int32_t n_own,
+                   const int32_t* in_contact, const PairResult* out) {
+    const ContactShare& sh = plan.contact;
+    if (!sh.dest_valid) plan_record_exchange(m, s, plan, comm);
+    const NodeId* cand_node = s.contact.cand.node.data();
+    const BodyId* cand_body = s.contact.cand.body.data();
+    const int32_t me = plan.rank, procs = plan.procs;
+    static_assert(kContactRecordBytes % sizeof(double) == 0);
+    constexpr int kW = static_cast<int>(kContactRecordBytes / sizeof(double));
+    constexpr size_t kKey = sizeof(NodeId) + sizeof(BodyId);
+    static_assert(std::is_trivially_copyable_v<PairResult>);
+
+    // 1. each own record's destinations, and the records per destination
+    int* send_counts = sh.send_counts.data();
+    for (const int32_t q : sh.neighbours)
+        send_counts[q] = 0;
+    resize_grow(sh.dest_begin, static_cast<size_t>(n_own) + 1);
+    sh.dest.clear();
+    int64_t* stamp = sh.stamp.data();
+    sh.dest_begin[0] = 0;
+    const uint8_t* solo = sh.body_solo.data();
+    const bool readers = !sh.force_readers.empty();
+    for (int32_t p = 0; p < n_own; ++p) {
+        const int32_t pr = in_contact[own_k[p]];
+        const NodeId j = cand_node[pr];
+        const BodyId c = cand_body[pr];
+        // (the common case: a contactor body only this process needs, a node target it owns)
+        if (solo[c] && !readers && j < ct.num_real_nodes) {
+            sh.dest_begin[static_cast<size_t>(p) + 1] = static_cast<int32_t>(sh.dest.size());
+            continue;
+        }
+        const int64_t tick = ++sh.tick;
+        pair_ranks(ct, plan, j, c, [&](int32_t r) {
+            if (r == me || stamp[r] == tick) return;
+            stamp[r] = tick;
+            FDEM_ASSERT(std::binary_search(sh.neighbours.begin(), sh.neighbours.end(), r),
+                        "a contact record for a process that is not a neighbour");
+            sh.dest.push_back(r);
+            ++send_counts[r];
+        });
+        sh.dest_begin[static_cast<size_t>(p) + 1] = static_cast<int32_t>(sh.dest.size());
+    }
+    sh.own_records = n_own;
+    sh.records_sent = static_cast<int64_t>(sh.dest.size());
+
+    // 2. the records, one message to and from each neighbour (its length tells the count)
+    int n_send = 0;
+    for (int32_t q = 0; q < procs; ++q) {
+        send_counts[q] *= kW;
+        sh.send_displs[static_cast<size_t>(q)] = n_send;
+        n_send += send_counts[q];
+    }
+    resize_grow(sh.send, static_cast<size_t>(n_send));
+    // (the fill position of each destination: its displacement, advanced per record)
+    resize_grow(sh.heads, 2 * static_cast<size_t>(procs));  // (the merge below: 2 per run)
+    int32_t* at = sh.heads.data();
+    for (int32_t q = 0; q < procs; ++q)
+        at[q] = sh.send_displs[static_cast<size_t>(q)];
+    for (int32_t p = 0; p < n_own; ++p) {
+        const int32_t k = own_k[p];
+        const int32_t pr = in_contact[k];
+        for (int32_t d = sh.dest_begin[static_cast<size_t>(p)];
+             d < sh.dest_begin[static_cast<size_t>(p) + 1]; ++d) {
+            const int32_t q = sh.dest[static_cast<size_t>(d)];
+            char* w = reinterpret_cast<char*>(sh.send.data() + at[q]);
+            std::memcpy(w, &cand_node[pr], sizeof(NodeId));
+            std::memcpy(w + sizeof(NodeId), &cand_body[pr], sizeof(BodyId));
+            std::memcpy(w + kKey, &out[k], sizeof(PairResult));
+            at[q] += kW;
+        }
+    }
+    comm.exchange_sized(sh.neighbours, sh.send.data(), sh.send_counts, sh.send_displs, sh.recv,
+                        sh.recv_counts, sh.recv_displs);
+    int n_recv = 0;
+    for (const int32_t q : sh.neighbours)
+        n_recv += sh.recv_counts[static_cast<size_t>(q)];
+    const size_t n_in = static_cast<size_t>(n_recv / kW);
+    sh.records_received = static_cast<int64_t>(n_in);
+    resize_grow(sh.rec_node, n_in);
+    resize_grow(sh.rec_body, n_in);
+    resize_grow(sh.rec_out, n_in);
+    NodeId* rnode = sh.rec_node.data();
+    BodyId* rbody = sh.rec_body.data();
+    PairResult* rout = sh.rec_out.data();
+    {
+        const char* r = reinterpret_cast<const char*>(sh.recv.data());
+        for (size_t k = 0; k < n_in; ++k, r += kContactRecordBytes) {
+            std::memcpy(&rnode[k], r, sizeof(NodeId));
+            std::memcpy(&rbody[k], r + sizeof(NodeId), sizeof(BodyId));
+            std::memcpy(&rout[k], r + kKey, sizeof(PairResult));
+        }
+    }
+
+    // 3. the merge in pair order: the own records and one sorted run per source (received
+    //    in rank order: run q is [recv_displs[q], + recv_counts[q]) / kW)
+    const size_t total = static_cast<size_t>(n_own) + n_in;
+    resize_grow(sh.order, total);
+    int32_t* order = sh.order.data();
+    // runs [head, end) of the received records, as pairs in sh.heads (reused)
+    int32_t nruns = 0;
+    for (const int32_t q : sh.neighbours) {
+        const size_t u = static_cast<size_t>(q);
+        if (sh.recv_counts[u] == 0) continue;
+        at[2 * nruns] = sh.recv_displs[u] / kW;
+        at[2 * nruns + 1] = (sh.recv_displs[u] + sh.recv_counts[u]) / kW;
+        ++nruns;
+    }
+    if (nruns == 0) {
+        std::copy(own_k, own_k + n_own, order);
+    } else if (nruns == 1) {
+        // (one neighbour sent records: a two-way merge)
+        int32_t p = 0, h = at[0];
+        const int32_t e = at[1];
+        size_t idx = 0;
+        while (p < n_own && h < e) {
+            const int32_t pr = in_contact[own_k[p]];
+            const NodeId j = cand_node[pr];
+            if (rnode[h] < j || (rnode[h] == j && rbody[h] < cand_body[pr])) {
+                order[idx++] = -1 - h++;
+            } else {
+                order[idx++] = own_k[p++];
+            }
+        }
+        for (; p < n_own; ++p)
+            order[idx++] = own_k[p];
+        for (; h < e; ++h)
+            order[idx++] = -1 - h;
+    } else {
+        int32_t p = 0;  // the next own record
+        for (size_t idx = 0; idx < total; ++idx) {
+            int32_t best = -1;  // the run of the smallest key; -1: the own record
+            NodeId bj = 0;
+            BodyId bc = 0;
+            if (p < n_own) {
+                const int32_t pr = in_contact[own_k[p]];
+                bj = cand_node[pr];
+                bc = cand_body[pr];
+            }
+            bool have = p < n_own;
+            for (int32_t r = 0; r < nruns; ++r) {
+                const int32_t h = at[2 * r];
+                if (h == at[2 * r + 1]) continue;
+                if (!have || rnode[h] < bj || (rnode[h] == bj && rbody[h] < bc)) {
+                    best = r;
+                    bj = rnode[h];
+                    bc = rbody[h];
+                    have = true;
+                }
+            }
+            if (best < 0) {
+                order[idx] = own_k[p++];
+            } else {
+                order[idx] = -1 - at[2 * best]++;
+            }
+        }
+    }
+
+    // 4. the forces, to the nodes this process needs, in pair order (threads: each to its own
+    //    range of nodes, as in the one-process apply)
+    const uint8_t* need = sh.need.data();
+    Vec2* const f = s.f.data();
+    Vec2* const fc = s.f_contact.data();
+    const auto record = [&](int32_t code, NodeId& j, BodyId& c) -> const PairResult& {
+        if (code >= 0) {
+            const int32_t pr = in_contact[code];
+            j = cand_node[pr];
+            c = cand_body[pr];
+            return out[code];
+        }
+        const size_t r = static_cast<size_t>(-1 - code);
+        j = rnode[r];
+        c = rbody[r];
+        return rout[r];
+    };
+    // every node the pair reaches is needed here: the one-process add (no test per node)
+    const uint8_t* all = sh.body_all.data();
+    const auto all_needed = [&](NodeId j, BodyId c) {
+        if (!all[c]) return false;
+        if (j < ct.num_real_nodes) return need[j] != 0;
+        const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
+        return need[e[0]] != 0 && need[e[1]] != 0;
+    };
+    const int max_threads = omp_get_max_threads();
+    if (max_threads < 2 || total < static_cast<size_t>(kMinParallelApply)) {
+        for (size_t idx = 0; idx < total; ++idx) {
+            NodeId j;
+            BodyId c;
+            const PairResult& o = record(order[idx], j, c);
+            if (all_needed(j, c)) {
+                add_pair_forces(ct, f, fc, j, o);
+                continue;
+            }
+            visit_pair_forces(ct, j, o, [f, fc, need](NodeId i, Vec2 fi) {
+                if (!need[i]) return;
+                f[i] += fi;
+                fc[i] += fi;
+            });
+        }
+        return;
+    }
+#pragma omp parallel
+    {
+        const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+        const int64_t nn = ct.num_real_nodes;
+        const NodeId lo = static_cast<NodeId>(nn * t / nt);
+        const NodeId hi = static_cast<NodeId>(nn * (t + 1) / nt);
+        for (size_t idx = 0; idx < total; ++idx) {
+            NodeId j;
+            BodyId c;
+            const PairResult& o = record(order[idx], j, c);
+            NodeId a, b;
+            pair_span(m, ct, j, c, a, b);
+            if (b < lo || a >= hi) continue;
+            visit_pair_forces(ct, j, o, [f, fc, need, lo, hi](NodeId i, Vec2 fi) {
+                if (i < lo || i >= hi || !need[i]) return;
+                f[i] += fi;
+                fc[i] += fi;
+            });
+        }
+    }
+}
+
 // add_contact_forces() with plan == nullptr; else as one process of a distributed run
 void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm) {
     const ContactShare* share = plan != nullptr ? &plan->contact : nullptr;
@@ -866,6 +1237,14 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     const Real dt = s.dt;
     const Vec2* x = s.x.data();
     const Vec2* v = s.v.data();
+    if (share != nullptr && share->active_full) {
+        // (a distributed run keeps the histories of its own targets' pairs only)
+        const int32_t* own = plan->node_owner.data();
+        const int32_t me = plan->rank;
+        std::erase_if(cs.active,
+                      [&](const ActiveContact& a) { return own[target_node(ct, a.node)] != me; });
+        share->active_full = false;
+    }
 
     // 1. virtual nodes follow their parents (spec §4.4-2); a welded contactor stands at its
     //    sectors' mean positions xc (eq. 6.23), the targets stay at x (no weld: xc = x)
@@ -899,7 +1278,10 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         } else {
             find_candidates(m, ct, x, xc, xv, cs.cand, cs.broad);
         }
-        if (share != nullptr) share->boxes_valid = false;
+        if (share != nullptr) {
+            share->boxes_valid = false;
+            share->dest_valid = false;
+        }
         if (ghosts) rebuild_ghosts(m, s, *plan, *comm);
         cs.need_rebuild = false;
         cs.skin_used = 0;
@@ -986,91 +1368,15 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         }
     }
 
-    // the pairs in contact, as spans [span_begin, + span_count) of in_contact and out in pair
-    // order: the chunks' fronts, or (distributed) every process's pairs in contact, gathered
-    int32_t span_begin[kPairChunks], span_count[kPairChunks];
-    int32_t nspans = kPairChunks;
-    for (int32_t ch = 0; ch < kPairChunks; ++ch) {
+    // the pairs in contact, as spans [span_begin, + chunk_count) of in_contact and out in pair
+    // order: the chunks' fronts (a distributed run: its own pairs; the other processes' records
+    // come in apply_records())
+    int32_t span_begin[kPairChunks];
+    for (int32_t ch = 0; ch < kPairChunks; ++ch)
         span_begin[ch] = chunk_begin(ch);
-        span_count[ch] = chunk_count[ch];
-    }
-    // the key (node, body) of the k-th pair in contact: key_node[in_contact[k]], the
-    // candidate's, or (distributed) the gathered record's
+    // the key (node, body) of the k-th pair in contact: key_node[in_contact[k]]
     const NodeId* key_node = cs.cand.node.data();
     const BodyId* key_body = cs.cand.body.data();
-    if (share != nullptr) {
-        // records (target node, contactor body, result), each process's in pair order; the
-        // gathered ones are put in (node, body) order, the serial pair order, by share->order
-        constexpr size_t kRec = kContactRecordBytes;
-        constexpr size_t kKey = sizeof(NodeId) + sizeof(BodyId);
-        static_assert(std::is_trivially_copyable_v<PairResult>);
-        std::vector<char>& send = share->send;
-        size_t n_mine = 0;
-        for (int32_t ch = 0; ch < kPairChunks; ++ch)
-            n_mine += static_cast<size_t>(chunk_count[ch]);
-        resize_grow(send, n_mine * kRec);
-        char* w = send.data();
-        for (int32_t ch = 0; ch < kPairChunks; ++ch) {
-            for (int32_t k = span_begin[ch]; k < span_begin[ch] + chunk_count[ch]; ++k) {
-                const int32_t pr = in_contact[k];
-                std::memcpy(w, &cs.cand.node[static_cast<size_t>(pr)], sizeof(NodeId));
-                std::memcpy(w + sizeof(NodeId), &cs.cand.body[static_cast<size_t>(pr)],
-                            sizeof(BodyId));
-                std::memcpy(w + kKey, &out[k], sizeof(PairResult));
-                w += kRec;
-            }
-        }
-        comm->allgather_bytes(send, share->recv);
-        const size_t n_all = share->recv.size() / kRec;
-        // (every process's pairs in contact: more than this process's candidates; grow only)
-        if (cs.pair_out.size() < n_all) {
-            cs.pair_out.resize(n_all);
-            cs.in_contact.resize(n_all);
-        }
-        out = cs.pair_out.data();
-        in_contact = cs.in_contact.data();
-        resize_grow(share->rec_node, n_all);
-        resize_grow(share->rec_body, n_all);
-        NodeId* rnode = share->rec_node.data();
-        BodyId* rbody = share->rec_body.data();
-        const char* r = share->recv.data();
-        for (size_t k = 0; k < n_all; ++k, r += kRec) {
-            std::memcpy(&rnode[k], r, sizeof(NodeId));
-            std::memcpy(&rbody[k], r + sizeof(NodeId), sizeof(BodyId));
-            std::memcpy(&out[k], r + kKey, sizeof(PairResult));
-            in_contact[k] = static_cast<int32_t>(k);  // the record's key is key_node[k] below
-        }
-        key_node = rnode;
-        key_body = rbody;
-        nspans = 1;
-        span_begin[0] = 0;
-        span_count[0] = static_cast<int32_t>(n_all);
-        std::vector<int32_t>& order = share->order;
-        resize_grow(order, n_all);
-        for (size_t k = 0; k < n_all; ++k)
-            order[k] = static_cast<int32_t>(k);
-        std::sort(order.begin(), order.end(), [rnode, rbody](int32_t a, int32_t b) {
-            return rnode[a] != rnode[b] ? rnode[a] < rnode[b] : rbody[a] < rbody[b];
-        });
-    }
-    const int32_t* perm = share != nullptr ? share->order.data() : nullptr;
-    if (ghosts) {
-        // the lost-contact test of a released pair (below) reads the contactor's boundary and
-        // the target: all-gather x first if any pair it tests is released this step (the same
-        // decision on every process: the active list and the gathered pairs are replicated)
-        bool test = false;
-        size_t a = 0;
-        for (int32_t idx = 0; idx < span_count[0] && !test; ++idx) {
-            const NodeId j = key_node[in_contact[perm[idx]]];
-            const BodyId c = key_body[in_contact[perm[idx]]];
-            for (; a < cs.active.size() && pair_below(cs.active[a], j, c); ++a)
-                test = test || lost_test_needed(m, ct, cs.active[a]);
-            if (a < cs.active.size() && cs.active[a].node == j && cs.active[a].body == c) ++a;
-        }
-        for (; a < cs.active.size() && !test; ++a)
-            test = lost_test_needed(m, ct, cs.active[a]);
-        if (test) gather_nodes(s.x.data(), *plan, *comm);
-    }
 
     // 3b. apply: the forces of the pairs in contact (eq. 20) and the bookkeeping, merged with
     //     the previous active list (both sorted by (node, body)), releasing the histories of
@@ -1086,9 +1392,9 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     //     (pair_span(): the target and the contactor body's nodes) misses the range.
     int32_t span_pos[kPairChunks + 1];  // the place of each span's first pair
     span_pos[0] = 0;
-    for (int32_t sp = 0; sp < nspans; ++sp)
-        span_pos[sp + 1] = span_pos[sp] + span_count[sp];
-    const int32_t n_next = span_pos[nspans];
+    for (int32_t sp = 0; sp < kPairChunks; ++sp)
+        span_pos[sp + 1] = span_pos[sp] + chunk_count[sp];
+    const int32_t n_next = span_pos[kPairChunks];
     // the new active list, written by place (resize value-initialises only the part beyond the
     // previous length)
     cs.active_next.resize(static_cast<size_t>(n_next));
@@ -1101,13 +1407,8 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         for (int32_t p = p0; p < p1; ++sp) {
             const int32_t end = std::min(p1, span_pos[sp + 1]);
             const int32_t off = span_begin[sp] - span_pos[sp];
-            if (perm != nullptr) {
-                for (; p < end; ++p)
-                    fn(p, perm[p + off]);
-            } else {
-                for (; p < end; ++p)
-                    fn(p, p + off);
-            }
+            for (; p < end; ++p)
+                fn(p, p + off);
         }
     };
     auto release = [&](const ActiveContact& a, ContactApplyPart& part, ExactSum& dissipated) {
@@ -1169,10 +1470,10 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     // the pair at p1); with_forces: the forces too (one thread)
     // (captures by value: the force stores could alias anything captured by reference, which
     // the compiler would then reload after each of them)
-    auto bookkeeping = [act, next, out, in_contact, key_node, key_body, perm, f, fc, deep_limit,
-                        &ct, &release, &span_pos,
-                        &span_begin](int32_t p0, int32_t p1, size_t ia, size_t ia_end,
-                                     ContactApplyPart& part, auto with_forces) {
+    auto bookkeeping = [act, next, out, in_contact, key_node, key_body, f, fc, deep_limit, &ct,
+                        &release, &span_pos, &span_begin](int32_t p0, int32_t p1, size_t ia,
+                                                          size_t ia_end, ContactApplyPart& part,
+                                                          auto with_forces) {
         ExactSum stored, dissipated;
         Real max_ratio = 0;
         int64_t deep = 0;
@@ -1187,7 +1488,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                 next_span = span_pos[sp + 1];
                 off = span_begin[sp] - span_pos[sp];
             }
-            const int32_t k = perm != nullptr ? perm[p] : p + off;
+            const int32_t k = p + off;
             const int32_t pr = in_contact[k];
             const NodeId j = key_node[pr];
             const BodyId c = key_body[pr];
@@ -1217,9 +1518,16 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     ContactApplyPart* parts = cs.apply_part.data();
     int nparts = 1;
     const bool par_apply = max_threads > 1 && n_next >= kMinParallelApply;
+    // (a distributed run: the bookkeeping of its own pairs here, their forces with the other
+    // processes' records in apply_records())
+    const bool local = share != nullptr;
     if (!par_apply) {
         parts[0] = ContactApplyPart{};
-        bookkeeping(0, n_next, 0, n_act, parts[0], std::true_type{});
+        if (local) {
+            bookkeeping(0, n_next, 0, n_act, parts[0], std::false_type{});
+        } else {
+            bookkeeping(0, n_next, 0, n_act, parts[0], std::true_type{});
+        }
     } else {
 #pragma omp parallel
         {
@@ -1232,33 +1540,44 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             };
             const int32_t p0 = slice(t), p1 = slice(t + 1);
             bookkeeping(p0, p1, t == 0 ? 0 : old_from(p0), old_from(p1), part, std::false_type{});
+            if (!local) {
 #pragma omp barrier
-            // the forces, to this thread's real nodes only, in pair order
-            const int64_t nn = ct.num_real_nodes;
-            const NodeId lo = static_cast<NodeId>(nn * t / nt);
-            const NodeId hi = static_cast<NodeId>(nn * (t + 1) / nt);
-            for_places(0, n_next, [&](int32_t, int32_t k) {
-                const int32_t pr = in_contact[k];
-                const NodeId j = key_node[pr];
-                NodeId a, b;
-                pair_span(m, ct, j, key_body[pr], a, b);
-                if constexpr (kAssertsEnabled) {
-                    visit_pair_forces(ct, j, out[k], [a, b]([[maybe_unused]] NodeId i, Vec2) {
-                        FDEM_ASSERT(i >= a && i <= b, "a pair's force reaches beyond its span");
-                    });
-                }
-                if (b < lo || a >= hi) return;
-                if (a >= lo && b < hi) {
-                    add_pair_forces(ct, f, fc, j, out[k]);
-                } else {
-                    add_pair_forces(ct, f, fc, j, out[k], lo, hi);
-                }
-            });
+                // the forces, to this thread's real nodes only, in pair order
+                const int64_t nn = ct.num_real_nodes;
+                const NodeId lo = static_cast<NodeId>(nn * t / nt);
+                const NodeId hi = static_cast<NodeId>(nn * (t + 1) / nt);
+                for_places(0, n_next, [&](int32_t, int32_t k) {
+                    const int32_t pr = in_contact[k];
+                    const NodeId j = key_node[pr];
+                    NodeId a, b;
+                    pair_span(m, ct, j, key_body[pr], a, b);
+                    if constexpr (kAssertsEnabled) {
+                        visit_pair_forces(ct, j, out[k], [a, b]([[maybe_unused]] NodeId i, Vec2) {
+                            FDEM_ASSERT(i >= a && i <= b, "a pair's force reaches beyond its span");
+                        });
+                    }
+                    if (b < lo || a >= hi) return;
+                    if (a >= lo && b < hi) {
+                        add_pair_forces(ct, f, fc, j, out[k]);
+                    } else {
+                        add_pair_forces(ct, f, fc, j, out[k], lo, hi);
+                    }
+                });
+            }
         }
     }
-    // the threads' shares in thread order (the exact sums in any order)
+    if (local) {
+        int32_t* own_k = nullptr;
+        resize_grow(share->own_k, static_cast<size_t>(n_next));
+        own_k = share->own_k.data();
+        for_places(0, n_next, [own_k](int32_t p, int32_t k) { own_k[p] = k; });
+        apply_records(m, ct, *plan, *comm, s, own_k, n_next, in_contact, out);
+    }
+    // the threads' shares in thread order (the exact sums in any order); a distributed run:
+    // this process's share, then the sums, counts and maxima over the processes
     ExactSum stored;
-    ExactSum& dissipated = s.energy_sums.dissipated_contact;
+    ExactSum step_dissipated;  // (a distributed run: this step's, summed over the processes)
+    ExactSum& dissipated = local ? step_dissipated : s.energy_sums.dissipated_contact;
     Real max_ratio = cs.max_depth_ratio;
     int64_t deep = cs.deep_penetrations;
     for (int r = 0; r < nparts; ++r) {
@@ -1282,10 +1601,27 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         cs.rebase.clear();
         cs.rebase_pending = false;
     }
+    if (local) {
+        // this process's share: step() sums it over the processes with the step's other sums
+        // (finish_contact_sums() sets the totals); the largest depth ratios stay this
+        // process's own until a lost pair or a checkpoint needs them (gather_active())
+        ExactSum* sums = share->sums;
+        sums[0] = stored;
+        sums[1] = dissipated;
+        sums[2] = ExactSum{};
+        sums[2].add(static_cast<double>(n_next));
+        sums[3] = ExactSum{};
+        sums[3].add(static_cast<double>(deep));
+        sums[4] = ExactSum{};
+        sums[4].add(static_cast<double>(cs.lost_inside));
+        share->sums_pending = true;
+        cs.max_depth_ratio_ever = std::max(cs.max_depth_ratio_ever, cs.max_depth_ratio);
+        return;
+    }
 
     s.energy.contact = stored.value();
     s.energy.dissipated_contact = dissipated.value();
-    cs.active_contacts = static_cast<int32_t>(cs.active.size());
+    cs.active_contacts = static_cast<int32_t>(n_next);
     cs.total_deep_penetrations += cs.deep_penetrations;
     cs.total_lost_inside += cs.lost_inside;
     cs.max_depth_ratio_ever = std::max(cs.max_depth_ratio_ever, cs.max_depth_ratio);
@@ -1307,6 +1643,100 @@ Real max_speed2(const Vec2* v, std::span<const std::pair<NodeId, NodeId>> runs) 
             v2s[0] = std::max(v2s[0], norm2(v[i]));
     }
     return std::max(std::max(v2s[0], v2s[1]), std::max(v2s[2], v2s[3]));
+}
+
+void contact_exchange_counts(const Model& m, const State& s, const StepPlan& plan,
+                             std::vector<int64_t>& to, std::vector<uint8_t>& may_send) {
+    may_send_marks(m, s, plan, may_send);
+    to.assign(static_cast<size_t>(plan.procs), 0);
+    const ContactTopology& ct = s.topology;
+    const int32_t me = plan.rank;
+    const ContactShare& sh = plan.contact;
+    for (const ActiveContact& a : s.contact.active) {
+        if (plan.node_owner[static_cast<size_t>(target_node(ct, a.node))] != me) continue;
+        const int64_t tick = ++sh.tick;
+        pair_ranks(ct, plan, a.node, a.body, [&](int32_t r) {
+            if (r == me || sh.stamp[static_cast<size_t>(r)] == tick) return;
+            sh.stamp[static_cast<size_t>(r)] = tick;
+            ++to[static_cast<size_t>(r)];
+        });
+    }
+}
+
+void finish_contact_sums(State& s, const StepPlan& plan, const Comm& comm, const ExactSum* totals) {
+    const ContactShare& sh = plan.contact;
+    sh.sums_pending = false;
+    ContactState& cs = s.contact;
+    s.energy.contact = totals[0].value();
+    s.energy_sums.dissipated_contact.add(totals[1]);
+    s.energy.dissipated_contact = s.energy_sums.dissipated_contact.value();
+    cs.active_contacts = static_cast<int32_t>(totals[2].value());
+    cs.deep_penetrations = static_cast<decltype(cs.deep_penetrations)>(totals[3].value());
+    const int64_t lost = static_cast<int64_t>(totals[4].value());
+    if (lost > 0) {
+        // the failure message (run_checks.cpp): the largest depth ratio, and the deepest lost
+        // pair, of equals the smallest (node, body) (the first in pair order, as the serial
+        // loop keeps it)
+        constexpr double kNoValue = std::numeric_limits<double>::infinity();
+        const bool here = cs.lost_node != kNone;
+        double mins[2] = {-cs.max_depth_ratio, here ? -cs.lost_depth_ratio : kNoValue};
+        comm.min(mins, 2);
+        const bool deepest = here && -cs.lost_depth_ratio == mins[1];
+        const double node = comm.min(deepest ? static_cast<double>(cs.lost_node) : kNoValue);
+        const bool first = deepest && static_cast<double>(cs.lost_node) == node;
+        const double body = comm.min(first ? static_cast<double>(cs.lost_body) : kNoValue);
+        cs.max_depth_ratio = -mins[0];
+        cs.lost_node = static_cast<NodeId>(node);
+        cs.lost_body = static_cast<BodyId>(body);
+        cs.lost_depth_ratio = -mins[1];
+    }
+    cs.lost_inside = static_cast<decltype(cs.lost_inside)>(lost);
+    cs.total_deep_penetrations += cs.deep_penetrations;
+    cs.total_lost_inside += cs.lost_inside;
+}
+
+void gather_active(State& s, const StepPlan& plan, const Comm& comm) {
+    const ContactShare& sh = plan.contact;
+    // the largest depth ratios of the last step and of the run (each process keeps its own)
+    ContactState& cs = s.contact;
+    double mins[2] = {-cs.max_depth_ratio, -cs.max_depth_ratio_ever};
+    comm.min(mins, 2);
+    cs.max_depth_ratio = -mins[0];
+    cs.max_depth_ratio_ever = -mins[1];
+    if (sh.active_full) return;  // (already the serial list on every process)
+    static_assert(std::is_trivially_copyable_v<ActiveContact>);
+    // the list and the one of the step before (active_next after the swap: scratch, but saved
+    // in checkpoints, which must be the serial file)
+    for (std::vector<ActiveContact>* list : {&s.contact.active, &s.contact.active_next}) {
+        std::vector<ActiveContact>& a = *list;
+        std::vector<char> mine(a.size() * sizeof(ActiveContact)), all;
+        if (!a.empty()) std::memcpy(mine.data(), a.data(), mine.size());
+        comm.allgather_bytes(mine, all);
+        a.resize(all.size() / sizeof(ActiveContact));
+        if (!a.empty()) std::memcpy(a.data(), all.data(), all.size());
+        // the processes' targets are disjoint: in (node, body) order this is the serial list
+        std::sort(a.begin(), a.end(), [](const ActiveContact& x, const ActiveContact& y) {
+            return pair_key_less(x, y);
+        });
+    }
+    sh.active_full = true;
+}
+
+void set_force_readers(StepPlan& plan, std::span<const std::vector<NodeId>> nodes,
+                       std::span<const int32_t> set_rank) {
+    ContactShare& sh = plan.contact;
+    sh.force_readers.clear();
+    for (size_t k = 0; k < nodes.size(); ++k) {
+        const int32_t r = set_rank[k];
+        for (const NodeId i : nodes[k]) {
+            if (plan.node_owner[static_cast<size_t>(i)] != r) sh.force_readers.emplace_back(i, r);
+        }
+    }
+    std::sort(sh.force_readers.begin(), sh.force_readers.end());
+    sh.force_readers.erase(std::unique(sh.force_readers.begin(), sh.force_readers.end()),
+                           sh.force_readers.end());
+    sh.body_rank_begin.clear();  // (recomputed with the readers at the next step)
+    sh.dest_valid = false;
 }
 
 void gather_candidates(State& s, const StepPlan& plan, const Comm& comm) {

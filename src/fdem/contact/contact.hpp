@@ -36,18 +36,58 @@ void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> 
 void add_contact_forces(const Model& m, State& s);
 
 /// Bytes of one pair-in-contact record of a distributed run (target node, contactor body,
-/// PairResult): every process all-gathers those of its targets every step (add_contact_forces()
-/// with a plan). Keyed by (node, body), the order of the serial pair loop, not by an index into
-/// a candidate list: each process holds only its own targets' candidates.
+/// PairResult): every process sends those of its targets every step to the processes that add
+/// the pair's forces to a node (add_contact_forces() with a plan). Keyed by (node, body), the
+/// order of the serial pair loop, not by an index into a candidate list: each process holds
+/// only its own targets' candidates.
 inline constexpr size_t kContactRecordBytes = sizeof(NodeId) + sizeof(BodyId) + sizeof(PairResult);
+
+/// The contact sums a distributed step reduces with its other exact sums (ContactShare::sums).
+inline constexpr int kContactSums = 5;
 
 /// Scratch of a process's share of the narrow phase in a distributed run (StepPlan::contact).
 struct ContactShare {
-    mutable std::vector<char> send, recv;  ///< the exchange of the pairs in contact (grow only)
-    mutable std::vector<int32_t> order;    ///< the gathered pairs in pair order
-    /// the gathered records' keys (target node, contactor body), in the order received
+    /// Nodes whose f and f_contact a process other than their owner reads every step, as
+    /// (node, process) pairs, ascending: the nodes of the bodies.csv sets that process sums
+    /// (Simulation). The pairs touching them are sent to that process too. Set it with
+    /// set_force_readers().
+    std::vector<std::pair<NodeId, int32_t>> force_readers;
+
+    // --- the exchange of the pairs in contact (local apply; grow-only buffers) ---
+    /// the records to the other processes, by destination (doubles: kContactRecordBytes / 8
+    /// per record), and those received, by source, each part in pair order
+    mutable std::vector<double> send, recv;
+    mutable std::vector<int> send_counts, send_displs, recv_counts, recv_displs;
+    /// the received records' keys and results, in the order received
     mutable std::vector<NodeId> rec_node;
     mutable std::vector<BodyId> rec_body;
+    mutable std::vector<PairResult> rec_out;
+    /// every pair whose forces this process adds, in pair order: k >= 0 its own pair k of the
+    /// narrow phase's output, k < 0 received record -k - 1
+    mutable std::vector<int32_t> order;
+    mutable std::vector<int32_t> dest, dest_begin;  ///< destinations of each own record
+    mutable std::vector<int64_t> stamp;             ///< per process (scratch)
+    mutable int64_t tick = 0;                       ///< stamp of the current record
+    mutable std::vector<int32_t> own_k, heads;      ///< the merge's scratch
+    /// per real node: this process adds forces to it (it owns it or reads it every step)
+    mutable std::vector<uint8_t> need;
+    /// per body: the processes that need a node of it (body_rank[body_rank_begin[b] ..
+    /// body_rank_begin[b + 1]), ascending)
+    mutable std::vector<int32_t> body_rank_begin, body_rank;
+    /// per body: only this process needs its nodes (solo), or it needs all of them (all)
+    mutable std::vector<uint8_t> body_solo, body_all;
+    mutable std::vector<int32_t> neighbours;  ///< processes it may exchange records with
+    mutable bool dest_valid = false;          ///< the lists above match the plan and candidates
+    /// cs.active may hold other processes' pairs (the serial list after a restore, a
+    /// distribute() or gather_active()): the next step keeps its own targets' pairs only
+    mutable bool active_full = true;
+    /// this process's contact sums of the step (stored energy, dissipation of the step, pairs
+    /// in contact, deep and lost pairs), pending: step() reduces them (finish_contact_sums())
+    mutable ExactSum sums[kContactSums];
+    mutable bool sums_pending = false;
+    mutable int64_t own_records = 0;       ///< pairs of its targets in contact at its last step
+    mutable int64_t records_sent = 0;      ///< record copies it sent at its last step
+    mutable int64_t records_received = 0;  ///< records it received at its last step
     /// candidate pairs of every process at the last broad phase (the serial list's length; a
     /// process holds only its own targets' pairs)
     mutable int64_t total_candidates = 0;
@@ -67,13 +107,43 @@ Real max_speed2(const Vec2* v, std::span<const std::pair<NodeId, NodeId>> runs);
 /// add_contact_forces() as one process of a distributed run (issue #15, docs/parallel.md): the
 /// process's broad phase queries only the targets it owns (its real node, or the first end
 /// node of an edge target: spec D5.3), so s.contact.cand holds their pairs only (a subsequence
-/// of the serial list); it evaluates them (narrow phase and law, the expensive part), the pairs
-/// in contact are all-gathered as records keyed by (node, body) and put in that order, and
-/// every process applies all of them as the serial loop does: the same f, f_contact, histories
-/// and energies on every process, bitwise the serial ones. The skin trigger is the maximum over
-/// the processes' own nodes; a broad-phase rebuild all-gathers x and v first and rebuilds the
-/// ghost lists (plan.ghosts). Collective.
+/// of the serial list); it evaluates them (narrow phase and law, the expensive part) and keeps
+/// their histories (s.contact.active: its own pairs). Each pair in contact goes as a record
+/// keyed by (node, body) to the processes that need one of the nodes its forces reach (the
+/// owners, and the readers of ContactShare::force_readers); each process merges its own and the
+/// received records in that order and adds their forces to the nodes it needs only, as the
+/// serial loop does: bitwise the serial f and f_contact there (elsewhere they are not
+/// computed). Energies, counts and the deepest lost pair are reduced over the processes (exact
+/// sums, maxima), so they are the serial values on every process. The skin trigger is the
+/// maximum over the processes' own nodes; a broad-phase rebuild all-gathers x and v first and
+/// rebuilds the ghost lists (plan.ghosts). Collective.
 void add_contact_forces(const Model& m, State& s, const StepPlan& plan, const Comm& comm);
+
+/// After a distributed add_contact_forces(): the contact sums of every process (totals: the
+/// exact sums over the processes of ContactShare::sums) into s: energies, pairs in contact,
+/// deep and lost pairs and their run totals; on a step that lost a pair also the largest depth
+/// ratio and the deepest lost pair (more reductions then). Collective.
+void finish_contact_sums(State& s, const StepPlan& plan, const Comm& comm, const ExactSum* totals);
+
+/// Replace every process's list of pairs in contact (s.contact.active, its own targets' pairs
+/// only during a run) by the serial one, and the largest depth ratios (each process keeps its
+/// own during a run) by the maxima over the processes, e.g. before a checkpoint is written or a
+/// new partition is made. Collective; allocates.
+void gather_active(State& s, const StepPlan& plan, const Comm& comm);
+
+/// The nodes whose forces a process other than their owner reads (ContactShare::force_readers),
+/// from the sets each process sums: nodes[k] of set k are read by process set_rank[k]. Every
+/// process must pass the same lists. Not collective.
+void set_force_readers(StepPlan& plan, std::span<const std::vector<NodeId>> nodes,
+                       std::span<const int32_t> set_rank);
+
+/// The exchange of contact records that plan's process makes at a step of state s (fdem
+/// decompose, parallel/decompose.hpp): to[q] (resized to plan.procs) = the records it sends
+/// process q (its targets' pairs in s.contact.active, each to every other process that needs a
+/// node the pair's forces reach), and may_send[q] = 1 for the processes its targets' candidate
+/// pairs may send to (its neighbours, with those that may send to it). Not collective.
+void contact_exchange_counts(const Model& m, const State& s, const StepPlan& plan,
+                             std::vector<int64_t>& to, std::vector<uint8_t>& may_send);
 
 /// Replace every process's own candidate list by the serial one (all of them merged in (node,
 /// body) order), e.g. before a checkpoint is written: the file holds the serial list whatever

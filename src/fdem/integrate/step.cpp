@@ -463,10 +463,28 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     }
 
     if (plan != nullptr) {
+        // the energy sums over the processes in one reduction (else all are zero everywhere),
+        // with the contact sums of the step (energies, pairs in contact, lost pairs: the ghost
+        // exchange below needs the total of those)
+        const bool pair_sums = plan->contact.sums_pending;
+        if (s.need_energy || mass_damped || plan->viscous || !m.bcs.empty() || pair_sums) {
+            ExactSum sums[6 + kContactSums] = {kinetic2,         gravity_work,    damping_power,
+                                               support_work_sum, element_sums[0], element_sums[1]};
+            if (pair_sums) std::copy_n(plan->contact.sums, kContactSums, sums + 6);
+            comm->sum(sums, pair_sums ? 6 + kContactSums : 6);
+            kinetic2 = sums[0];
+            gravity_work = sums[1];
+            damping_power = sums[2];
+            support_work_sum = sums[3];
+            pass.strain_energy = sums[4].value();
+            pass.viscous_power = sums[5].value();
+            if (pair_sums) finish_contact_sums(s, *plan, *comm, sums + 6);
+        }
         // x and v of the nodes each process reads, from their owners (with ghosts; every node
         // without, and after a step that lost a contact: its message names the node's
-        // position); the supports' reactions; f_contact is applied alike everywhere; f and the
-        // other nodes' x and v are gathered where they are written (Simulation, output steps)
+        // position); the supports' reactions; f, f_contact (each process has them for the
+        // nodes it needs) and the other nodes' x and v are gathered where they are written
+        // (Simulation, output steps)
         if (plan->ghosts.active && s.contact.lost_inside == 0) {
             exchange_ghosts(s, *plan, *comm);
         } else {
@@ -486,18 +504,6 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
             for (size_t j = 0; j < plan->bc_order.size(); ++j)
                 s.bc_reaction[static_cast<size_t>(plan->bc_order[j])] = {buf[2 * j],
                                                                          buf[2 * j + 1]};
-        }
-        // the energy sums over the processes in one reduction (else all are zero everywhere)
-        if (s.need_energy || mass_damped || plan->viscous || !m.bcs.empty()) {
-            ExactSum sums[6] = {kinetic2,         gravity_work,    damping_power,
-                                support_work_sum, element_sums[0], element_sums[1]};
-            comm->sum(sums, 6);
-            kinetic2 = sums[0];
-            gravity_work = sums[1];
-            damping_power = sums[2];
-            support_work_sum = sums[3];
-            pass.strain_energy = sums[4].value();
-            pass.viscous_power = sums[5].value();
         }
     }
     const Real support_work = support_work_sum.value();

@@ -158,6 +158,33 @@ void Resultants::accumulate_sets(const Model& m, const State& s, IntervalImpulse
     acc.time += dt_v;
 }
 
+std::vector<NodeId> Resultants::read_nodes(int32_t set) const {
+    const Set& st = sets_[static_cast<size_t>(set)];
+    std::vector<NodeId> nodes = st.force_nodes;
+    nodes.insert(nodes.end(), st.fixed_nodes.begin(), st.fixed_nodes.end());
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    return nodes;
+}
+
+std::vector<int32_t> Resultants::set_ranks(int32_t procs) const {
+    const int32_t n = num_sets();
+    std::vector<int32_t> order(static_cast<size_t>(n));
+    for (int32_t k = 0; k < n; ++k)
+        order[static_cast<size_t>(k)] = k;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int32_t a, int32_t b) { return set_cost(a) > set_cost(b); });
+    std::vector<int64_t> load(static_cast<size_t>(std::max(procs, 1)), 0);
+    std::vector<int32_t> rank(static_cast<size_t>(n), 0);
+    for (const int32_t k : order) {
+        const size_t p = static_cast<size_t>(std::min_element(load.begin(), load.end()) -
+                                             load.begin());  // (the first of equals)
+        load[p] += set_cost(k);
+        rank[static_cast<size_t>(k)] = static_cast<int32_t>(p);
+    }
+    return rank;
+}
+
 int64_t Resultants::set_cost(int32_t set) const {
     const Set& st = sets_[static_cast<size_t>(set)];
     return static_cast<int64_t>(st.force_nodes.size() + st.slots.size() + st.fixed_nodes.size()) +

@@ -42,6 +42,18 @@ public:
                           const std::vector<int>& send_displs, double* recv,
                           const std::vector<int>& recv_counts,
                           const std::vector<int>& recv_displs) const = 0;
+    /// Point-to-point exchange of messages whose lengths only the senders know, with a fixed set
+    /// of neighbours (ascending; q lists this process iff it lists q): send[send_displs[q] ..
+    /// + send_counts[q]) (doubles; 0 is a message too) goes to each neighbour q, and each
+    /// neighbour's message is received into recv (grown when needed, never shrunk) at
+    /// recv_displs[q], its length in recv_counts[q] (both sized to size(); 0 for the others,
+    /// received in the order of neighbours). One message each way per neighbour; collective
+    /// over the neighbours.
+    virtual void exchange_sized(const std::vector<int32_t>& neighbours, const double* send,
+                                const std::vector<int>& send_counts,
+                                const std::vector<int>& send_displs, std::vector<double>& recv,
+                                std::vector<int>& recv_counts,
+                                std::vector<int>& recv_displs) const = 0;
     /// Order-free reductions (D8.1): the same result for any process count.
     virtual double max(double x) const = 0;
     virtual double min(double x) const = 0;
@@ -75,6 +87,13 @@ public:
     }
     void exchange(const double*, const std::vector<int>&, const std::vector<int>&, double*,
                   const std::vector<int>&, const std::vector<int>&) const override {}
+    void exchange_sized(const std::vector<int32_t>&, const double*, const std::vector<int>&,
+                        const std::vector<int>&, std::vector<double>&,
+                        std::vector<int>& recv_counts,
+                        std::vector<int>& recv_displs) const override {
+        recv_counts.assign(1, 0);
+        recv_displs.assign(1, 0);
+    }
     double max(double x) const override { return x; }
     double min(double x) const override { return x; }
     void min(double*, int) const override {}

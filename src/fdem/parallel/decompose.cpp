@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "contact/contact.hpp"
+#include "fdem/measure.hpp"
 #include "integrate/node_update.hpp"
 #include "parallel/distributed.hpp"
 
@@ -68,11 +69,15 @@ PartCounts own_counts(const Model& m, const State& s, const StepPlan& p) {
 
 PartCounts part_counts(const Model& m, const State& s, const StepPlan& p) {
     PartCounts c = own_counts(m, s, p);
-    // the records this process did all-gather at its last step (decompose() counts the pairs
-    // of its targets in the active list: the test of the two is mpi.decompose_*)
+    // the records of its last step (decompose() counts them from the pairs of its targets in
+    // the active list: the test of the two is mpi.decompose_*)
     if (m.contact.algorithm != ContactAlgorithm::None &&
-        m.contact.algorithm != ContactAlgorithm::LegacyTriangle)
-        c.contact_records = static_cast<int64_t>(p.contact.send.size() / kContactRecordBytes);
+        m.contact.algorithm != ContactAlgorithm::LegacyTriangle) {
+        c.contact_records = p.contact.own_records;
+        c.contact_sent = p.contact.records_sent;
+        c.contact_received = p.contact.records_received;
+        c.contact_neighbours = static_cast<int32_t>(p.contact.neighbours.size());
+    }
     const GhostExchange& g = p.ghosts;
     if (g.active) {
         for (int q = 0; q < p.procs; ++q) {
@@ -85,9 +90,25 @@ PartCounts part_counts(const Model& m, const State& s, const StepPlan& p) {
 }
 
 std::vector<PartCounts> decompose(const Model& m, const State& s,
-                                  std::span<const int32_t> group_owner, int32_t parts) {
+                                  std::span<const int32_t> group_owner, int32_t parts,
+                                  const Resultants* sets) {
     if (parts < 1) throw std::invalid_argument("decompose: parts must be >= 1");
     std::vector<PartCounts> out(static_cast<size_t>(parts));
+    // the contact records: the processes that read each set's nodes, and per part the records
+    // to each other part and its neighbours (both directions of may_send: P x P marks)
+    const bool pairs = m.contact.algorithm != ContactAlgorithm::None &&
+                       m.contact.algorithm != ContactAlgorithm::LegacyTriangle;
+    std::vector<std::vector<NodeId>> set_nodes;
+    std::vector<int32_t> set_rank;
+    if (pairs && sets != nullptr && parts > 1) {
+        set_rank = sets->set_ranks(parts);
+        for (int32_t k = 0; k < sets->num_sets(); ++k)
+            set_nodes.push_back(sets->read_nodes(k));
+    }
+    const size_t np = static_cast<size_t>(parts);
+    std::vector<uint8_t> neighbour(pairs ? np * np : 0, 0);
+    std::vector<int64_t> to, received(np, 0);
+    std::vector<uint8_t> may_send;
     // what each part receives from each other: (from, to, nodes)
     struct Flow {
         int32_t from, to;
@@ -101,6 +122,16 @@ std::vector<PartCounts> decompose(const Model& m, const State& s,
         StepPlan p = make_part_plan(m, r, parts, std::move(node_owner));
         if (p.ghosts.active) ghost_receive_lists(m, s, p);
         out[static_cast<size_t>(r)] = own_counts(m, s, p);
+        if (pairs) {
+            if (!set_rank.empty()) set_force_readers(p, set_nodes, set_rank);
+            contact_exchange_counts(m, s, p, to, may_send);
+            for (int32_t q = 0; q < parts; ++q) {
+                const size_t u = static_cast<size_t>(q), ru = static_cast<size_t>(r);
+                out[ru].contact_sent += to[u];
+                received[u] += to[u];
+                if (may_send[u]) neighbour[ru * np + u] = neighbour[u * np + ru] = 1;
+            }
+        }
         if (p.ghosts.active) {
             for (int32_t q = 0; q < parts; ++q) {
                 const int n = p.ghosts.recv_counts[static_cast<size_t>(q)] / 4;
@@ -115,6 +146,11 @@ std::vector<PartCounts> decompose(const Model& m, const State& s,
         PartCounts& c = out[static_cast<size_t>(f.from)];
         c.send_nodes += f.nodes;
         ++c.send_to;
+    }
+    for (size_t r = 0; r < np && pairs; ++r) {
+        out[r].contact_received = received[r];
+        for (size_t q = 0; q < np; ++q)
+            out[r].contact_neighbours += neighbour[r * np + q];
     }
     return out;
 }
@@ -186,22 +222,29 @@ int64_t ghost_bytes_in(const PartCounts& c) {
 int64_t ghost_bytes_out(const PartCounts& c) {
     return kGhostBytes * c.send_nodes;
 }
+int64_t contact_bytes_in(const PartCounts& c) {
+    return static_cast<int64_t>(kContactRecordBytes) * c.contact_received;
+}
+int64_t contact_bytes_out(const PartCounts& c) {
+    return static_cast<int64_t>(kContactRecordBytes) * c.contact_sent;
+}
 int64_t gathered_bytes(const PartCounts& c) {
-    return static_cast<int64_t>(kContactRecordBytes) * c.contact_records +
-           static_cast<int64_t>(2 * sizeof(double)) * c.support_slots;
+    return static_cast<int64_t>(2 * sizeof(double)) * c.support_slots;
 }
 
 std::string partition_csv(std::span<const PartCounts> parts) {
     std::string out =
         "parts,part,nodes,tris_counted,tris_run,chunks_run,ghost_nodes,send_nodes,recv_from,"
         "send_to,candidate_pairs,contact_records,support_slots,ghost_bytes_in,ghost_bytes_out,"
-        "gathered_bytes\n";
+        "gathered_bytes,contact_neighbours,contact_sent,contact_received,contact_bytes_in,"
+        "contact_bytes_out\n";
     for (const PartCounts& c : parts) {
-        out +=
-            fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", parts.size(), c.part,
-                        c.nodes, c.tris_counted, c.tris_run, c.chunks_run, c.ghost_nodes,
-                        c.send_nodes, c.recv_from, c.send_to, c.candidate_pairs, c.contact_records,
-                        c.support_slots, ghost_bytes_in(c), ghost_bytes_out(c), gathered_bytes(c));
+        out += fmt::format(
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", parts.size(),
+            c.part, c.nodes, c.tris_counted, c.tris_run, c.chunks_run, c.ghost_nodes, c.send_nodes,
+            c.recv_from, c.send_to, c.candidate_pairs, c.contact_records, c.support_slots,
+            ghost_bytes_in(c), ghost_bytes_out(c), gathered_bytes(c), c.contact_neighbours,
+            c.contact_sent, c.contact_received, contact_bytes_in(c), contact_bytes_out(c));
     }
     return out;
 }

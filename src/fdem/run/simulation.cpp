@@ -46,6 +46,7 @@ struct Simulation::Impl {
     std::unique_ptr<PvdSeries> series;
     std::unique_ptr<Resultants> resultants;  ///< bodies.csv sums (output.bodies)
     std::vector<uint8_t> my_sets;            ///< distributed: the Resultants sets this process sums
+    std::vector<int32_t> set_rank;           ///< distributed: the process that sums each set
     std::unique_ptr<BodiesWriter> bodies;
     std::unique_ptr<ProbesWriter> probes;  ///< probes.csv ([[probe]] entries)
     /// cracks.csv, fragments.csv, joints_NNNNNN.vtu + joints.pvd (models with joints only)
@@ -123,21 +124,23 @@ struct Simulation::Impl {
             if (prog.impulses.contact.size() != static_cast<size_t>(resultants->num_sets()))
                 prog.impulses = resultants->make_impulses();
         }
-        const int32_t n = resultants->num_sets();
-        std::vector<int32_t> order(static_cast<size_t>(n));
-        for (int32_t k = 0; k < n; ++k)
-            order[static_cast<size_t>(k)] = k;
-        std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
-            return resultants->set_cost(a) > resultants->set_cost(b);
-        });
-        std::vector<int64_t> load(static_cast<size_t>(comm->size()), 0);
-        my_sets.assign(static_cast<size_t>(n), 0);
-        for (const int32_t k : order) {
-            const size_t p = static_cast<size_t>(std::min_element(load.begin(), load.end()) -
-                                                 load.begin());  // (the first of equals)
-            load[p] += resultants->set_cost(k);
-            my_sets[static_cast<size_t>(k)] = p == static_cast<size_t>(comm->rank());
-        }
+        set_rank = resultants->set_ranks(comm->size());
+        my_sets.assign(set_rank.size(), 0);
+        for (size_t k = 0; k < set_rank.size(); ++k)
+            my_sets[k] = set_rank[k] == comm->rank();
+        share_force_readers();
+    }
+
+    /// The contact forces of a distributed step are added only to the nodes a process needs
+    /// (contact.hpp add_contact_forces()): tell the plan which nodes each process's sets read
+    /// beside its own. Every process computes the same lists. After share_resultants() and
+    /// every new plan.
+    void share_force_readers() {
+        if (!plan || set_rank.empty() || !resultants) return;
+        std::vector<std::vector<NodeId>> nodes(set_rank.size());
+        for (size_t k = 0; k < nodes.size(); ++k)
+            nodes[k] = resultants->read_nodes(static_cast<int32_t>(k));
+        set_force_readers(*plan, nodes, set_rank);
     }
 
     /// Every set's impulses from the process that sums it, on every process. Collective.
@@ -260,8 +263,12 @@ struct Simulation::Impl {
         gather_forces(state, *plan, *comm);
         gather_impulses();
         const ContactAlgorithm a = model.contact.algorithm;
-        if (checkpoint && a != ContactAlgorithm::None && a != ContactAlgorithm::LegacyTriangle) {
+        const bool pairs = a != ContactAlgorithm::None && a != ContactAlgorithm::LegacyTriangle;
+        // (each process adds the contact forces of the nodes it needs only)
+        if (pairs) gather_nodes(state.f_contact.data(), *plan, *comm);
+        if (checkpoint && pairs) {
             gather_candidates(state, *plan, *comm);
+            gather_active(state, *plan, *comm);
         }
     }
 
@@ -460,6 +467,7 @@ struct Simulation::Impl {
         }
         plan = std::make_unique<StepPlan>(make_step_plan(model, comm->rank(), comm->size(), owner));
         plan->contact.total_candidates = static_cast<int64_t>(state.contact.cand.node.size());
+        share_force_readers();
         piece = make_vtu_piece(model, plan->node_owner, comm->rank());
         ++rebalanced.rebalances;
         rebalanced.planned_after = part_sum > 0 ? part_max * comm->size() / part_sum : 1.0;
@@ -578,6 +586,7 @@ void Simulation::distribute(const Comm& comm, const std::vector<int32_t>& group_
     I.piece = make_vtu_piece(I.model, I.plan->node_owner, comm.rank());
     // the state's list so far is a serial one (every target's pairs) until the next broad phase
     I.plan->contact.total_candidates = static_cast<int64_t>(I.state.contact.cand.node.size());
+    I.share_force_readers();
 }
 
 void Simulation::set_rebalance(Rebalance r) {
@@ -644,6 +653,8 @@ void Simulation::restore_checkpoint(const std::string& path) {
     if (I.plan) {  // other candidates: new ghost lists and box lists
         I.plan->ghosts.dirty = true;
         I.plan->contact.boxes_valid = false;
+        I.plan->contact.dest_valid = false;
+        I.plan->contact.active_full = true;  // (the serial list of pairs in contact)
         // the file holds the serial list (every process has it until its next broad phase)
         I.plan->contact.total_candidates = static_cast<int64_t>(I.state.contact.cand.node.size());
     }

@@ -1,6 +1,7 @@
 // `fdem decompose` (parallel/decompose.hpp, issue #15 M5): the counts of every part, checked
 // against their definitions computed here from the model and the candidate pairs directly
 // (the equality with what real processes exchange is the MPI test mpi.decompose_matches_run.*).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <set>
 #include <vector>
 
+#include "contact/contact.hpp"
 #include "fdem/build.hpp"
 #include "fdem/simulate.hpp"
 #include "integrate/node_update.hpp"
@@ -272,12 +274,22 @@ TEST(Decompose, CsvHasAHeaderAndARowPerPart) {
     parts[1].part = 1;
     parts[1].ghost_nodes = 3;
     parts[1].contact_records = 2;
+    parts[1].support_slots = 1;
+    parts[1].contact_neighbours = 1;
+    parts[1].contact_sent = 3;
+    parts[1].contact_received = 1;
     const std::string csv = partition_csv(parts);
     EXPECT_EQ(csv.substr(0, csv.find('\n')),
               "parts,part,nodes,tris_counted,tris_run,chunks_run,ghost_nodes,send_nodes,recv_from,"
               "send_to,candidate_pairs,contact_records,support_slots,ghost_bytes_in,"
-              "ghost_bytes_out,gathered_bytes");
-    EXPECT_NE(csv.find("\n2,1,0,0,0,0,3,0,0,0,0,2,0,96,0,"), std::string::npos) << csv;
+              "ghost_bytes_out,gathered_bytes,contact_neighbours,contact_sent,contact_received,"
+              "contact_bytes_in,contact_bytes_out");
+    // ghosts 32 B per node; the supports' all-gather 16 B per slot; records point to point
+    const int64_t rec = static_cast<int64_t>(kContactRecordBytes);
+    EXPECT_NE(
+        csv.find(fmt::format("\n2,1,0,0,0,0,3,0,0,0,0,2,1,96,0,16,1,3,1,{},{}\n", rec, 3 * rec)),
+        std::string::npos)
+        << csv;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Comm over MPI: see parallel/mpi/mpi_comm.hpp.
 #include "parallel/mpi/mpi_comm.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -120,6 +121,44 @@ void MpiComm::exchange(const double* send, const std::vector<int>& send_counts,
         }
     }
     MPI_Waitall(n, requests_.data(), MPI_STATUSES_IGNORE);
+}
+
+void MpiComm::exchange_sized(const std::vector<int32_t>& neighbours, const double* send,
+                             const std::vector<int>& send_counts,
+                             const std::vector<int>& send_displs, std::vector<double>& recv,
+                             std::vector<int>& recv_counts, std::vector<int>& recv_displs) const {
+    constexpr int kTag = 16;
+    const size_t n = neighbours.size();
+    if (requests_.size() < n) requests_.resize(n);
+    if (messages_.size() < n) messages_.resize(n);
+    for (size_t k = 0; k < n; ++k) {
+        const int q = neighbours[k];
+        MPI_Isend(send + send_displs[static_cast<size_t>(q)], send_counts[static_cast<size_t>(q)],
+                  MPI_DOUBLE, q, kTag, comm_, &requests_[k]);
+    }
+    // the lengths from the probed messages, then the receives into place
+    recv_counts.assign(static_cast<size_t>(size_), 0);
+    recv_displs.assign(static_cast<size_t>(size_), 0);
+    int total = 0;
+    for (size_t k = 0; k < n; ++k) {
+        const int q = neighbours[k];
+        MPI_Status st;
+        MPI_Mprobe(q, kTag, comm_, &messages_[k], &st);
+        int count = 0;
+        MPI_Get_count(&st, MPI_DOUBLE, &count);
+        recv_counts[static_cast<size_t>(q)] = count;
+        recv_displs[static_cast<size_t>(q)] = total;
+        total += count;
+    }
+    if (recv.size() < static_cast<size_t>(total))
+        recv.resize(std::max(static_cast<size_t>(total), 2 * recv.size()));
+    for (size_t k = 0; k < n; ++k) {
+        const int q = neighbours[k];
+        MPI_Mrecv(recv.data() + recv_displs[static_cast<size_t>(q)],
+                  recv_counts[static_cast<size_t>(q)], MPI_DOUBLE, &messages_[k],
+                  MPI_STATUS_IGNORE);
+    }
+    MPI_Waitall(static_cast<int>(n), requests_.data(), MPI_STATUSES_IGNORE);
 }
 
 double MpiComm::max(double x) const {

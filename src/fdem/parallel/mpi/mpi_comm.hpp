@@ -41,6 +41,10 @@ public:
                   const std::vector<int>& send_displs, double* recv,
                   const std::vector<int>& recv_counts,
                   const std::vector<int>& recv_displs) const override;
+    void exchange_sized(const std::vector<int32_t>& neighbours, const double* send,
+                        const std::vector<int>& send_counts, const std::vector<int>& send_displs,
+                        std::vector<double>& recv, std::vector<int>& recv_counts,
+                        std::vector<int>& recv_displs) const override;
     double max(double x) const override;
     double min(double x) const override;
     void min(double* x, int n) const override;
@@ -55,6 +59,7 @@ private:
         sum_buf_;  ///< sum()'s words, sized on first use (no allocation per step)
     mutable std::vector<int> counts_, displs_;   ///< allgather_bytes()'s, sized on first use
     mutable std::vector<MPI_Request> requests_;  ///< exchange()'s, sized on first use
+    mutable std::vector<MPI_Message> messages_;  ///< exchange_sized()'s probed messages
     int rank_ = 0;
     int size_ = 1;
 };
