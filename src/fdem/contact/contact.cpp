@@ -891,7 +891,6 @@ void plan_body_ranks(const Model& m, const StepPlan& plan) {
     sh.stamp.assign(static_cast<size_t>(plan.procs), -1);
     sh.body_rank_begin.assign(static_cast<size_t>(nb) + 1, 0);
     sh.body_rank.clear();
-    sh.body_solo.assign(static_cast<size_t>(nb), 0);
     sh.body_all.assign(static_cast<size_t>(nb), 0);
     for (BodyId b = 0; b < nb; ++b) {
         const Body& body = m.bodies[static_cast<size_t>(b)];
@@ -911,9 +910,6 @@ void plan_body_ranks(const Model& m, const StepPlan& plan) {
         const int32_t first = sh.body_rank_begin[static_cast<size_t>(b)];
         std::sort(sh.body_rank.begin() + first, sh.body_rank.end());
         sh.body_rank_begin[static_cast<size_t>(b) + 1] = static_cast<int32_t>(sh.body_rank.size());
-        sh.body_solo[static_cast<size_t>(b)] =
-            sh.body_rank.size() == static_cast<size_t>(first) + 1 &&
-            sh.body_rank[static_cast<size_t>(first)] == me;
         bool all = true;
         for (NodeId i = body.node_begin; i < body.node_end && all; ++i)
             all = sh.need[static_cast<size_t>(i)] != 0;
@@ -922,10 +918,6 @@ void plan_body_ranks(const Model& m, const StepPlan& plan) {
     sh.stamp.assign(static_cast<size_t>(plan.procs), -1);  // (free for the records' ticks)
 }
 
-// The processes this one may exchange records with until the next broad phase: those its own
-// candidate pairs may send to, and those whose candidate pairs may send to it (an all-gather
-// of the lists). Collective: every process calls it at the same step (after a broad phase or
-// with a new plan).
 // mark[q] = 1 for the other processes the records of plan's candidate pairs may go to
 void may_send_marks(const Model& m, const State& s, const StepPlan& plan,
                     std::vector<uint8_t>& mark) {
@@ -945,6 +937,10 @@ void may_send_marks(const Model& m, const State& s, const StepPlan& plan,
     mark[static_cast<size_t>(me)] = 0;
 }
 
+// The processes this one may exchange records with until the next broad phase: those its own
+// candidate pairs may send to, and those whose candidate pairs may send to it (an all-gather
+// of the lists). Collective: every process calls it at the same step (after a broad phase or
+// with a new plan).
 void plan_record_exchange(const Model& m, const State& s, const StepPlan& plan, const Comm& comm) {
     const ContactShare& sh = plan.contact;
     const int32_t me = plan.rank, procs = plan.procs;
@@ -977,8 +973,6 @@ void plan_record_exchange(const Model& m, const State& s, const StepPlan& plan, 
     const size_t p = static_cast<size_t>(procs);
     sh.send_counts.assign(p, 0);
     sh.send_displs.assign(p, 0);
-    sh.recv_counts.assign(p, 0);
-    sh.recv_displs.assign(p, 0);
     sh.dest_valid = true;
 }
 
@@ -1009,14 +1003,16 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
     sh.dest.clear();
     int64_t* stamp = sh.stamp.data();
     sh.dest_begin[0] = 0;
-    const uint8_t* solo = sh.body_solo.data();
+    const int32_t* rank_begin = sh.body_rank_begin.data();
+    const int32_t* rank = sh.body_rank.data();
     const bool readers = !sh.force_readers.empty();
     for (int32_t p = 0; p < n_own; ++p) {
         const int32_t pr = in_contact[own_k[p]];
         const NodeId j = cand_node[pr];
         const BodyId c = cand_body[pr];
         // (the common case: a contactor body only this process needs, a node target it owns)
-        if (solo[c] && !readers && j < ct.num_real_nodes) {
+        if (rank_begin[c + 1] - rank_begin[c] == 1 && rank[rank_begin[c]] == me && !readers &&
+            j < ct.num_real_nodes) {
             sh.dest_begin[static_cast<size_t>(p) + 1] = static_cast<int32_t>(sh.dest.size());
             continue;
         }
@@ -1098,24 +1094,6 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
     }
     if (nruns == 0) {
         std::copy(own_k, own_k + n_own, order);
-    } else if (nruns == 1) {
-        // (one neighbour sent records: a two-way merge)
-        int32_t p = 0, h = at[0];
-        const int32_t e = at[1];
-        size_t idx = 0;
-        while (p < n_own && h < e) {
-            const int32_t pr = in_contact[own_k[p]];
-            const NodeId j = cand_node[pr];
-            if (rnode[h] < j || (rnode[h] == j && rbody[h] < cand_body[pr])) {
-                order[idx++] = -1 - h++;
-            } else {
-                order[idx++] = own_k[p++];
-            }
-        }
-        for (; p < n_own; ++p)
-            order[idx++] = own_k[p];
-        for (; h < e; ++h)
-            order[idx++] = -1 - h;
     } else {
         int32_t p = 0;  // the next own record
         for (size_t idx = 0; idx < total; ++idx) {
@@ -1569,9 +1547,8 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         }
     }
     if (local) {
-        int32_t* own_k = nullptr;
         resize_grow(share->own_k, static_cast<size_t>(n_next));
-        own_k = share->own_k.data();
+        int32_t* own_k = share->own_k.data();
         for_places(0, n_next, [own_k](int32_t p, int32_t k) { own_k[p] = k; });
         apply_records(m, ct, *plan, *comm, s, own_k, n_next, in_contact, out);
     }

@@ -74,8 +74,8 @@ struct ContactShare {
     /// per body: the processes that need a node of it (body_rank[body_rank_begin[b] ..
     /// body_rank_begin[b + 1]), ascending)
     mutable std::vector<int32_t> body_rank_begin, body_rank;
-    /// per body: only this process needs its nodes (solo), or it needs all of them (all)
-    mutable std::vector<uint8_t> body_solo, body_all;
+    /// per body: this process needs all of its nodes
+    mutable std::vector<uint8_t> body_all;
     mutable std::vector<int32_t> neighbours;  ///< processes it may exchange records with
     mutable bool dest_valid = false;          ///< the lists above match the plan and candidates
     /// cs.active may hold other processes' pairs (the serial list after a restore, a
