@@ -152,6 +152,13 @@ struct ContactState {
     std::vector<uint8_t> rebase_body;  ///< per body: 1 if its topology was rebuilt this step
     bool rebase_pending = false;
     std::vector<BodyBox> body_box;  ///< per body, scratch of add_contact_forces()
+    /// the contactor bodies of cand, ascending: the only boxes the narrow phase reads, so only
+    /// theirs are computed (one-process runs; a distributed run lists its own pairs' in
+    /// ContactShare::box_bodies). Scratch, not saved: box_list_valid is cleared wherever cand
+    /// is written (broad phase, checkpoint read, gather_candidates())
+    std::vector<BodyId> box_bodies;
+    std::vector<uint8_t> box_mark;  ///< per body, scratch of the list
+    bool box_list_valid = false;
     /// false: no body-box reject (every box infinite), for the tests that compare the narrow
     /// phase with and without it; not saved in checkpoints
     bool box_reject = true;

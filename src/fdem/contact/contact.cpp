@@ -285,6 +285,9 @@ void init_contact_state(const Model& m, State& s) {
     cs.cand.tri.reserve(16 * nb + 64);
     cs.pair_out.reserve(4 * nb + 16);
     cs.body_box.assign(static_cast<size_t>(m.num_bodies()), BodyBox{});
+    cs.box_bodies.reserve(static_cast<size_t>(m.num_bodies()));
+    cs.box_mark.assign(static_cast<size_t>(m.num_bodies()), 0);
+    cs.box_list_valid = false;
     cs.broad.tri_center.reserve(nt);
     cs.broad.tri_radius.reserve(nt);
     cs.broad.tri_cell.reserve(nt);
@@ -570,6 +573,29 @@ void body_boxes(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyBo
 
 namespace {
 
+// ContactState::box_bodies: the contactor bodies of the candidate pairs, ascending (one-process
+// runs; the narrow phase reads no other box, so the others are not computed: on a sparse
+// particle raster most bodies have no candidate pair)
+void list_contactor_bodies(const Model& m, ContactState& cs) {
+    std::vector<BodyId>& list = cs.box_bodies;
+    list.clear();
+    const BodyId* body = cs.cand.body.data();
+    const size_t np = cs.cand.body.size();
+    // mark, then collect in body order (sized at init: no allocation in the step)
+    cs.box_mark.assign(static_cast<size_t>(m.num_bodies()), 0);
+    uint8_t* mark = cs.box_mark.data();
+    for (size_t p = 0; p < np; ++p)
+        mark[body[p]] = 1;
+    for (BodyId b = 0; b < m.num_bodies(); ++b) {
+        if (mark[b]) list.push_back(b);
+    }
+    cs.box_list_valid = true;
+}
+
+}  // namespace
+
+namespace {
+
 // The field of contactor sub-triangle t at x (eq. 3), extended linearly beyond t: its
 // barycentric coordinates N (negative outside t) and vertices pt; NaN for a degenerate t.
 Real extended_field(const Model& m, const ContactTopology& ct, const Vec2* xc, const Vec2* xv,
@@ -818,6 +844,7 @@ void probe_law_depths(const Model& m, State& s, std::span<const BodyId> dirty) {
         const Vec2* x = s.x.data();
         const Vec2* xc = ct.welded() ? cs.xw.data() : x;
         find_candidates(m, ct, x, xc, cs.xv.data(), cs.cand, cs.broad);
+        cs.box_list_valid = false;
         const int32_t npairs = static_cast<int32_t>(cs.cand.node.size());
         PairResult out;
         for (int32_t pr = 0; pr < npairs; ++pr) {
@@ -1258,6 +1285,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         } else {
             find_candidates(m, ct, x, xc, xv, cs.cand, cs.broad);
         }
+        cs.box_list_valid = false;
         if (share != nullptr) {
             share->boxes_valid = false;
             share->dest_valid = false;
@@ -1296,10 +1324,14 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     // boxes of their contactors (listed again after every broad phase)
     const int32_t* owner = plan != nullptr ? plan->node_owner.data() : nullptr;
     const int32_t my_rank = plan != nullptr ? plan->rank : 0;
-    if (plan != nullptr) contactor_bodies(m, s, *plan);  // (lists them after a rebuild)
-    const BodyId* box_list = share != nullptr ? share->box_bodies.data() : nullptr;
-    const int32_t box_count =
-        share != nullptr ? static_cast<int32_t>(share->box_bodies.size()) : m.num_bodies();
+    if (plan != nullptr) {
+        contactor_bodies(m, s, *plan);  // (lists them after a rebuild)
+    } else if (!cs.box_list_valid) {
+        list_contactor_bodies(m, cs);
+    }
+    const std::vector<BodyId>& box_bodies = share != nullptr ? share->box_bodies : cs.box_bodies;
+    const BodyId* box_list = box_bodies.data();
+    const int32_t box_count = static_cast<int32_t>(box_bodies.size());
     {
         const ContactState& ccs = cs;
         const NodeId* cand_node = cs.cand.node.data();
@@ -1720,6 +1752,7 @@ void set_force_readers(StepPlan& plan, std::span<const std::vector<NodeId>> node
 
 void gather_candidates(State& s, const StepPlan& plan, const Comm& comm) {
     Candidates& cand = s.contact.cand;
+    s.contact.box_list_valid = false;
     const ContactTopology& ct = s.topology;
     // the pairs of my targets only (after a first gather a process holds every pair), as
     // [pairs][tris][node...][body...][count per pair...][tri...] (int32 words)

@@ -633,6 +633,7 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     r.get(c.cand.body);
     r.get(c.cand.begin);
     r.get(c.cand.tri);
+    c.box_list_valid = false;  // (scratch: the contactor list of the old candidates)
     r.get(c.broad.tri_center);
     r.get(c.broad.tri_radius);
     r.get(c.broad.tri_cell);
