@@ -6,9 +6,11 @@
 // bitwise the same state with and without the reject.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <random>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "contact/contact.hpp"
 #include "contact/field.hpp"
 #include "fdem/simulate.hpp"
+#include "io/checkpoint.hpp"
 #include "support/scenes.hpp"
 
 namespace fdem {
@@ -326,18 +329,22 @@ void expect_same_state(const State& a, const State& b) {
     EXPECT_EQ(a.contact.rebuilds, b.contact.rebuilds);
 }
 
-void run_with_and_without(const Model& m, int steps, int min_active) {
+// returns the smallest number of bodies whose boxes a step computed (ContactState::box_bodies)
+size_t run_with_and_without(const Model& m, int steps, int min_active) {
     State with = make_state(m, 0.5 * stable_time_step(m));
     State without = with;
     without.contact.box_reject = false;
     int max_active = 0;
+    size_t fewest_boxes = static_cast<size_t>(m.num_bodies());
     for (int n = 0; n < steps; ++n) {
         step(m, with);
         step(m, without);
         max_active = std::max(max_active, with.contact.active_contacts);
+        fewest_boxes = std::min(fewest_boxes, with.contact.box_bodies.size());
     }
     EXPECT_GE(max_active, min_active);  // the runs did have contacts
     expect_same_state(with, without);
+    return fewest_boxes;
 }
 
 TEST(NarrowReject, PackBitwiseWithAndWithout) {
@@ -351,7 +358,53 @@ TEST(NarrowReject, ParticleBoxBitwiseWithAndWithout) {
     scenes::ParticleOptions o;
     o.nx = o.ny = 6;
     o.v_max = 20;
-    run_with_and_without(scenes::make_particle_box(o), 600, 5);
+    const Model m = scenes::make_particle_box(o);
+    // only the candidates' contactors have boxes computed: here fewer than all bodies, so the
+    // list (rebuilt after every broad phase) is what the equality above tested
+    EXPECT_LT(run_with_and_without(m, 600, 5), static_cast<size_t>(m.num_bodies()));
+}
+
+// A checkpoint read into a State that has stepped already (its list of contactor bodies made for
+// other candidates) continues as the run that wrote it: the read clears the list.
+TEST(NarrowReject, CheckpointReadRenewsTheContactorList) {
+    scenes::ParticleOptions o;
+    o.nx = o.ny = 6;
+    o.v_max = 20;
+    const Model m = scenes::make_particle_box(o);
+    State ref = make_state(m, 0.5 * stable_time_step(m));
+    State s = ref;
+    step(m, s);  // the particles apart: few contactors
+    for (int n = 0; n < 450; ++n)
+        step(m, ref);
+    // the written candidates have contactors that s's list lacks (else the test shows nothing)
+    const std::vector<BodyId>& old_list = s.contact.box_bodies;
+    bool lacks = false;
+    for (const BodyId b : ref.contact.cand.body)
+        lacks = lacks || !std::binary_search(old_list.begin(), old_list.end(), b);
+    ASSERT_TRUE(lacks);
+    const std::string path = ::testing::TempDir() + "/contactor_list.fdck";
+    write_checkpoint(path, m, ref, {});
+    RunProgress progress;
+    read_checkpoint(path, m, s, progress);
+    // the next step (no broad phase in it) computes the boxes of the read candidates'
+    // contactors: the list is theirs, not the one s had
+    const int64_t rebuilds = s.contact.rebuilds;
+    step(m, ref);
+    step(m, s);
+    ASSERT_EQ(s.contact.rebuilds, rebuilds);
+    std::vector<BodyId> want(s.contact.cand.body.begin(), s.contact.cand.body.end());
+    std::sort(want.begin(), want.end());
+    want.erase(std::unique(want.begin(), want.end()), want.end());
+    EXPECT_EQ(s.contact.box_bodies, want);
+    int max_active = 0;
+    for (int n = 0; n < 300; ++n) {
+        step(m, ref);
+        step(m, s);
+        max_active = std::max(max_active, s.contact.active_contacts);
+    }
+    EXPECT_GE(max_active, 5);
+    expect_same_state(ref, s);
+    std::filesystem::remove(path);
 }
 
 }  // namespace
