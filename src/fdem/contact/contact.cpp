@@ -1748,6 +1748,7 @@ void set_force_readers(StepPlan& plan, std::span<const std::vector<NodeId>> node
                            sh.force_readers.end());
     sh.body_rank_begin.clear();  // (recomputed with the readers at the next step)
     sh.dest_valid = false;
+    plan.clear_valid = false;  // the forces it clears include the read nodes
 }
 
 void gather_candidates(State& s, const StepPlan& plan, const Comm& comm) {

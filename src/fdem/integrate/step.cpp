@@ -17,6 +17,8 @@
 // Parallel loops (OpenMP) are bitwise deterministic: per-node work is independent, and every
 // reduction is summed per fixed block of nodes (kNodeBlock, independent of the thread count) and
 // then over the blocks in block order (docs/performance.md).
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <span>
@@ -215,6 +217,66 @@ bool node_update_uses_avx512() {
 
 namespace {
 
+// StepPlan::clear_runs: the owned nodes, GhostExchange::static_need (the other nodes of its
+// element runs and chunks, the load nodes) and the nodes of the bodies.csv sets it sums
+// (ContactShare::force_readers): every node its element pass, loads and contact apply write
+void make_clear_runs(const Model& m, const StepPlan& p) {
+    std::vector<uint8_t> mark(static_cast<size_t>(m.num_nodes()), 0);
+    for (const auto& [b, e] : p.own_runs)
+        std::fill(mark.begin() + b, mark.begin() + e, uint8_t{1});
+    for (const NodeId i : p.ghosts.static_need)
+        mark[static_cast<size_t>(i)] = 1;
+    for (const auto& [i, r] : p.contact.force_readers) {
+        if (r == p.rank) mark[static_cast<size_t>(i)] = 1;
+    }
+    p.clear_runs.clear();
+    p.clear_first.clear();
+    p.clear_count = 0;
+    for (NodeId i = 0; i < m.num_nodes();) {
+        if (!mark[static_cast<size_t>(i)]) {
+            ++i;
+            continue;
+        }
+        NodeId e = i + 1;
+        while (e < m.num_nodes() && mark[static_cast<size_t>(e)])
+            ++e;
+        p.clear_runs.emplace_back(i, e);
+        p.clear_first.push_back(p.clear_count);
+        p.clear_count += e - i;
+        i = e;
+    }
+    p.clear_first.push_back(p.clear_count);
+    p.clear_valid = true;
+}
+
+// Step 2 of a distributed step: f and f_contact zero on StepPlan::clear_runs; threads split
+// the concatenated runs evenly
+void clear_forces(const Model& m, State& s, const StepPlan& p) {
+    if (!p.clear_valid) make_clear_runs(m, p);
+    Vec2* f = s.f.data();
+    Vec2* fc = s.f_contact.data();
+    const bool contact = m.contact.algorithm != ContactAlgorithm::None;
+    const NodeId total = p.clear_count;
+    const auto* runs = p.clear_runs.data();
+    const NodeId* first = p.clear_first.data();
+    const int32_t nruns = static_cast<int32_t>(p.clear_runs.size());
+#pragma omp parallel if (total >= kMinParallelNodes)
+    {
+        const int nthr = omp_get_num_threads(), t = omp_get_thread_num();
+        const NodeId k0 = static_cast<NodeId>(static_cast<int64_t>(total) * t / nthr);
+        const NodeId k1 = static_cast<NodeId>(static_cast<int64_t>(total) * (t + 1) / nthr);
+        // the run holding the k0-th node: the last with first[r] <= k0
+        int32_t r = static_cast<int32_t>(std::upper_bound(first, first + nruns, k0) - first) - 1;
+        for (NodeId k = k0; k < k1 && r < nruns; ++r) {
+            const NodeId b = runs[r].first + (k - first[r]);
+            const NodeId e = std::min(runs[r].second, b + (k1 - k));
+            std::fill(f + b, f + e, Vec2{});
+            if (contact) std::fill(fc + b, fc + e, Vec2{});
+            k += e - b;
+        }
+    }
+}
+
 // The step; with a plan, as one process of a distributed run (parallel/distributed.hpp): the
 // element pass over the plan's chunks, the node update and the supports over its nodes, then the
 // owned parts exchanged so that every process holds the whole State again.
@@ -251,7 +313,12 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
 
     // 2. clear forces (without contact, f_contact is never written and stays zero)
     Vec2* fc = s.f_contact.data();
-    if (m.contact.algorithm != ContactAlgorithm::None) {
+    if (plan != nullptr && plan->ghosts.active &&
+        (m.contact.algorithm == ContactAlgorithm::None ||
+         m.contact.algorithm == ContactAlgorithm::Smooth)) {
+        // a distributed run: only the nodes this process adds forces to (StepPlan::clear_runs)
+        clear_forces(m, s, *plan);
+    } else if (m.contact.algorithm != ContactAlgorithm::None) {
 #pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
         for (NodeId i = 0; i < nn; ++i) {
             f[i] = {};

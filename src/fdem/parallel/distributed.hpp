@@ -66,7 +66,17 @@ struct StepPlan {
     mutable std::vector<double> bc_buffer;      ///< gather buffer (2 per slot)
     mutable GhostExchange ghosts;               ///< neighbour exchange of x and v
     mutable Real max_speed2 = 0;  ///< this step's skin speed max |v|^2 over all processes
-    bool viscous = false;         ///< a material has viscosity: the viscous power every step
+    /// the nodes whose f and f_contact the step clears, as ranges [first, second) ascending:
+    /// those this process adds forces to (owned, GhostExchange::static_need, the nodes of the
+    /// bodies.csv sets it sums), with ghosts and smooth or no contact (else every node); the
+    /// other nodes' forces are neither written nor read by it (owners' values arrive by
+    /// gather_nodes() where they are written out). Made by the first step of the plan and
+    /// after set_force_readers() (clear_valid = false); clear_count = their number of nodes
+    mutable std::vector<std::pair<NodeId, NodeId>> clear_runs;
+    mutable std::vector<NodeId> clear_first;  ///< nodes before run k (prefix sums)
+    mutable NodeId clear_count = 0;
+    mutable bool clear_valid = false;
+    bool viscous = false;  ///< a material has viscosity: the viscous power every step
 };
 
 /// Whether plan's process exchanges ghosts (GhostExchange::active) and the ghosts it always
