@@ -573,28 +573,25 @@ void body_boxes(const ContactTopology& ct, const Vec2* x, const Vec2* xv, BodyBo
 
 namespace {
 
-// ContactState::box_bodies: the contactor bodies of the candidate pairs, ascending (one-process
-// runs; the narrow phase reads no other box, so the others are not computed: on a sparse
-// particle raster most bodies have no candidate pair)
-void list_contactor_bodies(const Model& m, ContactState& cs) {
-    std::vector<BodyId>& list = cs.box_bodies;
-    list.clear();
-    const BodyId* body = cs.cand.body.data();
-    const size_t np = cs.cand.body.size();
-    // mark, then collect in body order (sized at init: no allocation in the step)
-    cs.box_mark.assign(static_cast<size_t>(m.num_bodies()), 0);
-    uint8_t* mark = cs.box_mark.data();
-    for (size_t p = 0; p < np; ++p)
-        mark[body[p]] = 1;
-    for (BodyId b = 0; b < m.num_bodies(); ++b) {
-        if (mark[b]) list.push_back(b);
+// The contactor bodies of the candidate pairs of cand, ascending, into list (mark: per-body
+// scratch): with owner, only the pairs whose target node the process rank owns (a distributed
+// run: ContactShare::box_bodies; its candidates may still hold every process's pairs after a
+// restore); without, every pair (one-process runs: ContactState::box_bodies; the narrow phase
+// reads no other box, so the others are not computed: on a sparse particle raster most bodies
+// have no candidate pair; its mark and list are sized at init: no allocation in the step).
+void list_contactors(const Model& m, const ContactTopology& ct, const Candidates& cand,
+                     const int32_t* owner, int32_t rank, std::vector<uint8_t>& mark,
+                     std::vector<BodyId>& list) {
+    mark.assign(static_cast<size_t>(m.num_bodies()), 0);
+    for (size_t pr = 0; pr < cand.node.size(); ++pr) {
+        if (owner == nullptr || owner[target_node(ct, cand.node[pr])] == rank)
+            mark[static_cast<size_t>(cand.body[pr])] = 1;
     }
-    cs.box_list_valid = true;
+    list.clear();
+    for (BodyId b = 0; b < m.num_bodies(); ++b) {
+        if (mark[static_cast<size_t>(b)]) list.push_back(b);
+    }
 }
-
-}  // namespace
-
-namespace {
 
 // The field of contactor sub-triangle t at x (eq. 3), extended linearly beyond t: its
 // barycentric coordinates N (negative outside t) and vertices pt; NaN for a degenerate t.
@@ -1327,7 +1324,8 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     if (plan != nullptr) {
         contactor_bodies(m, s, *plan);  // (lists them after a rebuild)
     } else if (!cs.box_list_valid) {
-        list_contactor_bodies(m, cs);
+        list_contactors(m, ct, cs.cand, nullptr, 0, cs.box_mark, cs.box_bodies);
+        cs.box_list_valid = true;
     }
     const std::vector<BodyId>& box_bodies = share != nullptr ? share->box_bodies : cs.box_bodies;
     const BodyId* box_list = box_bodies.data();
@@ -1824,18 +1822,8 @@ void gather_candidates(State& s, const StepPlan& plan, const Comm& comm) {
 const std::vector<BodyId>& contactor_bodies(const Model& m, const State& s, const StepPlan& plan) {
     const ContactShare& share = plan.contact;
     if (share.boxes_valid) return share.box_bodies;
-    const ContactTopology& ct = s.topology;
-    const Candidates& cand = s.contact.cand;
-    std::vector<uint8_t>& mark = share.body_mark;
-    mark.assign(static_cast<size_t>(m.num_bodies()), 0);
-    for (size_t pr = 0; pr < cand.node.size(); ++pr) {
-        if (plan.node_owner[static_cast<size_t>(target_node(ct, cand.node[pr]))] == plan.rank)
-            mark[static_cast<size_t>(cand.body[pr])] = 1;
-    }
-    share.box_bodies.clear();
-    for (BodyId b = 0; b < m.num_bodies(); ++b) {
-        if (mark[static_cast<size_t>(b)]) share.box_bodies.push_back(b);
-    }
+    list_contactors(m, s.topology, s.contact.cand, plan.node_owner.data(), plan.rank,
+                    share.body_mark, share.box_bodies);
     share.boxes_valid = true;
     return share.box_bodies;
 }
