@@ -19,8 +19,9 @@ struct Energy {
     /// sum 1/2 m |v^n|^2 with v^n = (v^{n-1/2} + v^{n+1/2})/2 (stale when State::need_energy
     /// was false)
     Real kinetic = 0;
-    Real strain = 0;   ///< sum A0 W(F) (stale when State::need_energy was false)
-    Real contact = 0;  ///< stored contact potential (path-independent part)
+    Real strain = 0;  ///< sum A0 W(F) (stale when State::need_energy was false)
+    /// stored contact potential (path-independent part; stale when State::need_energy was false)
+    Real contact = 0;
     /// work done by gravity since t = 0 (stale when State::need_energy was false)
     Real work_gravity = 0;
     Real work_external = 0;  ///< work done by prescribed-velocity supports, kicks and loads
@@ -83,7 +84,8 @@ struct State {
     std::vector<Real> scratch_sums;
     int32_t next_kick = 0;  ///< index of the next VelocityKick to apply
     /// Evaluate the energies of state (strain: a std::log per triangle; kinetic and gravity
-    /// work: ordered sums over the nodes; the joints' E_joint and W_frac) in the next step().
+    /// work: ordered sums over the nodes; the stored contact energy: an exact sum over the pairs
+    /// in contact; the joints' E_joint and W_frac) in the next step().
     /// When false, those keep the values of the last step that evaluated them (stale); x, v and
     /// the integrated energies (work_external, dissipated_*) are bitwise the same either way.
     /// Callers that read the energies only on output / check steps set it for those steps

@@ -1459,6 +1459,10 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     const size_t n_act = cs.active.size();
     ActiveContact* next = cs.active_next.data();
     const Real deep_limit = cm.deep_ratio_limit;
+    // the stored energy (an exact sum, ~40 instructions per pair) only on the steps that evaluate
+    // the energies (State::need_energy), as the strain and kinetic energies; each pair's own
+    // stored energy (h.stored, what a lost pair releases) is kept every step by the law
+    const bool energy = s.need_energy;
     Vec2* const f = s.f.data();
     Vec2* const fc = s.f_contact.data();
     // the first old entry not below the pair at place p (n_act for p = n_next)
@@ -1480,10 +1484,10 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     // the pair at p1); with_forces: the forces too (one thread)
     // (captures by value: the force stores could alias anything captured by reference, which
     // the compiler would then reload after each of them)
-    auto bookkeeping = [act, next, out, in_contact, key_node, key_body, f, fc, deep_limit, &ct,
-                        &release, &span_pos, &span_begin](int32_t p0, int32_t p1, size_t ia,
-                                                          size_t ia_end, ContactApplyPart& part,
-                                                          auto with_forces) {
+    auto bookkeeping = [act, next, out, in_contact, key_node, key_body, f, fc, deep_limit, energy,
+                        &ct, &release, &span_pos,
+                        &span_begin](int32_t p0, int32_t p1, size_t ia, size_t ia_end,
+                                     ContactApplyPart& part, auto with_forces) {
         ExactSum stored, dissipated;
         Real max_ratio = 0;
         int64_t deep = 0;
@@ -1511,7 +1515,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             const Real ratio = o.h.depth_ratio;
             max_ratio = std::max(max_ratio, ratio);
             deep += ratio > deep_limit ? 1 : 0;
-            stored.add(o.stored);
+            if (energy) stored.add(o.stored);
             if (o.dissipated != 0) dissipated.add(o.dissipated);  // (exact: zeros add nothing)
             next[p] = ActiveContact{j, c, o.h};
         }
@@ -1628,7 +1632,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         return;
     }
 
-    s.energy.contact = stored.value();
+    if (energy) s.energy.contact = stored.value();  // (else stale, State::need_energy)
     s.energy.dissipated_contact = dissipated.value();
     cs.active_contacts = static_cast<int32_t>(n_next);
     cs.total_deep_penetrations += cs.deep_penetrations;
@@ -1676,7 +1680,7 @@ void finish_contact_sums(State& s, const StepPlan& plan, const Comm& comm, const
     const ContactShare& sh = plan.contact;
     sh.sums_pending = false;
     ContactState& cs = s.contact;
-    s.energy.contact = totals[0].value();
+    if (s.need_energy) s.energy.contact = totals[0].value();  // (else stale: zero terms)
     s.energy_sums.dissipated_contact.add(totals[1]);
     s.energy.dissipated_contact = s.energy_sums.dissipated_contact.value();
     cs.active_contacts = static_cast<int32_t>(totals[2].value());
