@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -72,9 +73,12 @@ public:
                     const std::vector<uint8_t>& mine) const;
     /// The work of accumulate() for one set per step: the nodes and slots it sums over (+ 1).
     int64_t set_cost(int32_t set) const;
-    /// The process that sums each set in a run of `procs` processes: the sets by falling cost
-    /// (set_cost(), ties by id), each to the least loaded process so far (the first of equals).
-    std::vector<int32_t> set_ranks(int32_t procs) const;
+    /// The process that sums each set in a run of `procs` processes whose node i is owned by
+    /// node_owner[i]: the sets by falling cost (set_cost(), ties by id), each to the process
+    /// that owns most of its read_nodes() (ties: the least loaded so far, then the lowest rank),
+    /// so that few contact forces have to reach a process that does not own their node; a set
+    /// without read nodes to the least loaded process so far (the first of equals).
+    std::vector<int32_t> set_ranks(int32_t procs, std::span<const int32_t> node_owner) const;
 
     /// Values of every set for the state after a step (out: num_sets() entries); the averages
     /// are acc / acc.time (the last instant values where acc.time is 0).

@@ -908,8 +908,13 @@ void plan_body_ranks(const Model& m, const StepPlan& plan) {
     sh.need.assign(static_cast<size_t>(nn), 0);
     for (NodeId i = 0; i < nn; ++i)
         sh.need[static_cast<size_t>(i)] = plan.node_owner[static_cast<size_t>(i)] == me;
+    sh.other_reader.assign(static_cast<size_t>(nn), 0);
     for (const auto& [i, r] : rd) {
-        if (r == me) sh.need[static_cast<size_t>(i)] = 1;
+        if (r == me) {
+            sh.need[static_cast<size_t>(i)] = 1;
+        } else {
+            sh.other_reader[static_cast<size_t>(i)] = 1;
+        }
     }
     const BodyId nb = m.num_bodies();
     sh.stamp.assign(static_cast<size_t>(plan.procs), -1);
@@ -1029,14 +1034,16 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
     sh.dest_begin[0] = 0;
     const int32_t* rank_begin = sh.body_rank_begin.data();
     const int32_t* rank = sh.body_rank.data();
-    const bool readers = !sh.force_readers.empty();
+    const uint8_t* other_reader = sh.other_reader.data();
     for (int32_t p = 0; p < n_own; ++p) {
         const int32_t pr = in_contact[own_k[p]];
         const NodeId j = cand_node[pr];
         const BodyId c = cand_body[pr];
-        // (the common case: a contactor body only this process needs, a node target it owns)
-        if (rank_begin[c + 1] - rank_begin[c] == 1 && rank[rank_begin[c]] == me && !readers &&
-            j < ct.num_real_nodes) {
+        // (the common case: a contactor body only this process needs, a node target it owns
+        // and no other process reads: no destination, without pair_ranks()' searches of the
+        // readers; the body's readers are in its body_rank)
+        if (rank_begin[c + 1] - rank_begin[c] == 1 && rank[rank_begin[c]] == me &&
+            j < ct.num_real_nodes && other_reader[j] == 0) {
             sh.dest_begin[static_cast<size_t>(p) + 1] = static_cast<int32_t>(sh.dest.size());
             continue;
         }

@@ -76,6 +76,9 @@ struct ContactShare {
     mutable std::vector<int32_t> body_rank_begin, body_rank;
     /// per body: this process needs all of its nodes
     mutable std::vector<uint8_t> body_all;
+    /// per real node: another process reads its forces (force_readers), so a pair of this
+    /// process's that reaches it has a destination; 0 everywhere without readers
+    mutable std::vector<uint8_t> other_reader;
     mutable std::vector<int32_t> neighbours;  ///< processes it may exchange records with
     mutable bool dest_valid = false;          ///< the lists above match the plan and candidates
     /// cs.active may hold other processes' pairs (the serial list after a restore, a

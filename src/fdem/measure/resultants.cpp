@@ -167,20 +167,43 @@ std::vector<NodeId> Resultants::read_nodes(int32_t set) const {
     return nodes;
 }
 
-std::vector<int32_t> Resultants::set_ranks(int32_t procs) const {
+std::vector<int32_t> Resultants::set_ranks(int32_t procs,
+                                           std::span<const int32_t> node_owner) const {
     const int32_t n = num_sets();
     std::vector<int32_t> order(static_cast<size_t>(n));
     for (int32_t k = 0; k < n; ++k)
         order[static_cast<size_t>(k)] = k;
     std::stable_sort(order.begin(), order.end(),
                      [&](int32_t a, int32_t b) { return set_cost(a) > set_cost(b); });
-    std::vector<int64_t> load(static_cast<size_t>(std::max(procs, 1)), 0);
+    const size_t np = static_cast<size_t>(std::max(procs, 1));
+    std::vector<int64_t> load(np, 0);
     std::vector<int32_t> rank(static_cast<size_t>(n), 0);
+    std::vector<int64_t> owned(np, 0);  // read nodes of the set per process (touched ones only)
+    std::vector<int32_t> touched;
     for (const int32_t k : order) {
-        const size_t p = static_cast<size_t>(std::min_element(load.begin(), load.end()) -
-                                             load.begin());  // (the first of equals)
-        load[p] += set_cost(k);
-        rank[static_cast<size_t>(k)] = static_cast<int32_t>(p);
+        touched.clear();
+        for (const NodeId i : read_nodes(k)) {
+            const int32_t o = node_owner[static_cast<size_t>(i)];
+            if (owned[static_cast<size_t>(o)]++ == 0) touched.push_back(o);
+        }
+        int32_t best = -1;
+        for (const int32_t o : touched) {
+            const size_t u = static_cast<size_t>(o);
+            if (best < 0) {
+                best = o;
+                continue;
+            }
+            const size_t b = static_cast<size_t>(best);
+            if (owned[u] > owned[b] || (owned[u] == owned[b] && load[u] < load[b]) ||
+                (owned[u] == owned[b] && load[u] == load[b] && o < best))
+                best = o;
+        }
+        for (const int32_t o : touched)
+            owned[static_cast<size_t>(o)] = 0;
+        if (best < 0)  // no read nodes: the least loaded process (the first of equals)
+            best = static_cast<int32_t>(std::min_element(load.begin(), load.end()) - load.begin());
+        load[static_cast<size_t>(best)] += set_cost(k);
+        rank[static_cast<size_t>(k)] = best;
     }
     return rank;
 }

@@ -98,13 +98,6 @@ std::vector<PartCounts> decompose(const Model& m, const State& s,
     // to each other part and its neighbours (both directions of may_send: P x P marks)
     const bool pairs = m.contact.algorithm != ContactAlgorithm::None &&
                        m.contact.algorithm != ContactAlgorithm::LegacyTriangle;
-    std::vector<std::vector<NodeId>> set_nodes;
-    std::vector<int32_t> set_rank;
-    if (pairs && sets != nullptr && parts > 1) {
-        set_rank = sets->set_ranks(parts);
-        for (int32_t k = 0; k < sets->num_sets(); ++k)
-            set_nodes.push_back(sets->read_nodes(k));
-    }
     const size_t np = static_cast<size_t>(parts);
     std::vector<uint8_t> neighbour(pairs ? np * np : 0, 0);
     std::vector<int64_t> to, received(np, 0);
@@ -118,6 +111,14 @@ std::vector<PartCounts> decompose(const Model& m, const State& s,
     // a plan per part (O(nodes + triangles) each: ~10^3 parts of 10^7 triangles in minutes),
     // the node owners handed from one to the next
     std::vector<int32_t> node_owner = node_owners(m, parts, group_owner);
+    // the bodies.csv sets, each summed by the process that owns most of its nodes (as a run)
+    std::vector<std::vector<NodeId>> set_nodes;
+    std::vector<int32_t> set_rank;
+    if (pairs && sets != nullptr && parts > 1) {
+        set_rank = sets->set_ranks(parts, node_owner);
+        for (int32_t k = 0; k < sets->num_sets(); ++k)
+            set_nodes.push_back(sets->read_nodes(k));
+    }
     for (int32_t r = 0; r < parts; ++r) {
         StepPlan p = make_part_plan(m, r, parts, std::move(node_owner));
         if (p.ghosts.active) ghost_receive_lists(m, s, p);

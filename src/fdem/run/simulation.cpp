@@ -114,21 +114,39 @@ struct Simulation::Impl {
     /// sets, each set summed by one process in the serial order (the same bits); the impulses
     /// are all-gathered before output and checkpoints (gather_impulses()). Without this,
     /// process 0 alone summed every set every step (4.5 % of its instructions in a 3 600-grain
-    /// pile on 2 processes, an Amdahl term that grows with P). Sets go to the least loaded
-    /// process, largest first (Resultants::set_cost()).
+    /// pile on 2 processes, an Amdahl term that grows with P). Each set goes to the process that
+    /// owns most of its nodes (Resultants::set_ranks()): a set summed elsewhere needs the contact
+    /// forces of all its nodes sent there every step (with sets dealt by load alone, half of a
+    /// 6 400-block pack's were, and the 2-process step ran 31 % more instructions with bodies.csv
+    /// than without).
     void share_resultants() {
         my_sets.clear();
+        set_rank.clear();
         if (!plan || comm->size() < 2 || !run.output.bodies) return;
         if (!resultants) {  // (process 0 made it in open_writers())
             resultants = std::make_unique<Resultants>(model, state.topology);
             if (prog.impulses.contact.size() != static_cast<size_t>(resultants->num_sets()))
                 prog.impulses = resultants->make_impulses();
         }
-        set_rank = resultants->set_ranks(comm->size());
+        assign_sets();
+    }
+
+    /// The sets' processes for the current plan, and the force readers that follow from them.
+    void assign_sets() {
+        set_rank = resultants->set_ranks(comm->size(), plan->node_owner);
         my_sets.assign(set_rank.size(), 0);
         for (size_t k = 0; k < set_rank.size(); ++k)
             my_sets[k] = set_rank[k] == comm->rank();
         share_force_readers();
+    }
+
+    /// After a new plan: the sets follow their nodes to their new owners. The impulses summed
+    /// so far are all-gathered first, so each set's new process continues its running sum (the
+    /// same bits as one process). Collective.
+    void sets_follow_plan() {
+        if (set_rank.empty()) return;  // (not shared yet: share_resultants() assigns them)
+        gather_impulses();
+        assign_sets();
     }
 
     /// The contact forces of a distributed step are added only to the nodes a process needs
@@ -467,7 +485,7 @@ struct Simulation::Impl {
         }
         plan = std::make_unique<StepPlan>(make_step_plan(model, comm->rank(), comm->size(), owner));
         plan->contact.total_candidates = static_cast<int64_t>(state.contact.cand.node.size());
-        share_force_readers();
+        sets_follow_plan();
         piece = make_vtu_piece(model, plan->node_owner, comm->rank());
         ++rebalanced.rebalances;
         rebalanced.planned_after = part_sum > 0 ? part_max * comm->size() / part_sum : 1.0;
@@ -586,7 +604,7 @@ void Simulation::distribute(const Comm& comm, const std::vector<int32_t>& group_
     I.piece = make_vtu_piece(I.model, I.plan->node_owner, comm.rank());
     // the state's list so far is a serial one (every target's pairs) until the next broad phase
     I.plan->contact.total_candidates = static_cast<int64_t>(I.state.contact.cand.node.size());
-    I.share_force_readers();
+    I.sets_follow_plan();
 }
 
 void Simulation::set_rebalance(Rebalance r) {

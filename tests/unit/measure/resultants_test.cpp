@@ -3,6 +3,7 @@
 // share_resultants()), gives every set's impulse bit for bit as the accumulation of all sets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,50 @@ TEST(Resultants, SharedSetsSumTheSameBits) {
     EXPECT_TRUE(some_contact);  // the block presses on the ground: the sums are not all zero
     EXPECT_EQ(a.time, all.time);
     EXPECT_EQ(b.time, all.time);
+}
+
+// Each set is summed by the process that owns most of the nodes it reads (so that few contact
+// forces travel to a process that does not own their node); a set whose read nodes are split
+// evenly goes to the less loaded of those processes; none is lost or duplicated.
+TEST(Resultants, SetsGoToTheOwnerOfMostOfTheirNodes) {
+    Simulation sim = Simulation::from_file(kDemo);
+    const Model& m = sim.model();
+    const Resultants r(m, sim.state().topology);
+    std::vector<int32_t> reading;  // the sets with read nodes
+    for (int32_t k = 0; k < r.num_sets(); ++k) {
+        if (!r.read_nodes(k).empty()) reading.push_back(k);
+    }
+    ASSERT_GE(reading.size(), 2U);
+    // every node to process 1: every set with read nodes goes there, whatever the load
+    std::vector<int32_t> owner(static_cast<size_t>(m.num_nodes()), 1);
+    std::vector<int32_t> rank = r.set_ranks(3, owner);
+    ASSERT_EQ(rank.size(), static_cast<size_t>(r.num_sets()));
+    for (const int32_t k : reading)
+        EXPECT_EQ(rank[static_cast<size_t>(k)], 1) << r.name(k);
+    // set k's read nodes to process k % 2, except one node of the first set to the other: the
+    // majority still decides
+    std::fill(owner.begin(), owner.end(), 0);
+    for (const int32_t k : reading) {
+        for (const NodeId i : r.read_nodes(k))
+            owner[static_cast<size_t>(i)] = k % 2;
+    }
+    const std::vector<NodeId> first = r.read_nodes(reading[0]);
+    if (first.size() >= 3) owner[static_cast<size_t>(first[0])] = 1 - reading[0] % 2;
+    rank = r.set_ranks(2, owner);
+    for (const int32_t k : reading)
+        EXPECT_EQ(rank[static_cast<size_t>(k)], k % 2) << r.name(k);
+    // one node on each of two processes: the tie goes to the less loaded one (here the one
+    // without the larger sets before it), and always to one of the two
+    if (first.size() >= 2) {
+        std::fill(owner.begin(), owner.end(), 2);
+        for (size_t n = 0; n < first.size(); ++n)
+            owner[static_cast<size_t>(first[n])] = n < first.size() / 2 ? 0 : 1;
+        if (first.size() % 2 == 0) {
+            rank = r.set_ranks(3, owner);
+            EXPECT_TRUE(rank[static_cast<size_t>(reading[0])] == 0 ||
+                        rank[static_cast<size_t>(reading[0])] == 1);
+        }
+    }
 }
 
 }  // namespace
