@@ -159,6 +159,17 @@ struct ContactState {
     std::vector<BodyId> box_bodies;
     std::vector<uint8_t> box_mark;  ///< per body, scratch of the list
     bool box_list_valid = false;
+    /// With fc_sparse: every node whose f_contact may be non-zero is in fc_nodes (ascending,
+    /// no repeats): the nodes the contact applies reached since step() last cleared f_contact.
+    /// A step with few pairs in contact then clears f_contact, and bodies.csv sums it, at those
+    /// nodes only (integrate/step.cpp step 2, measure/resultants.cpp). False: the next clear
+    /// is of every node (after it, fc_sparse with an empty list). The list never grows beyond
+    /// the capacity the first full clear reserves (num_real_nodes / kSparseContactForceRatio):
+    /// an apply that would overflow it sets fc_sparse false instead. Scratch, not saved: every
+    /// other writer of f_contact (checkpoint read, the all-gather of output steps, baseline A)
+    /// sets fc_sparse false
+    std::vector<NodeId> fc_nodes;
+    bool fc_sparse = false;
     /// false: no body-box reject (every box infinite), for the tests that compare the narrow
     /// phase with and without it; not saved in checkpoints
     bool box_reject = true;

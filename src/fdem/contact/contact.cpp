@@ -162,6 +162,34 @@ inline void add_pair_forces(const ContactTopology& ct, Vec2* f, Vec2* fc, NodeId
     });
 }
 
+// After an apply: the nodes its pairs' forces reached, added to ContactState::fc_nodes (which
+// stays ascending without repeats); each(visit) walks visit_pair_forces() of every pair it
+// applied. An apply that would overflow the list's reserved capacity (never grown in the step)
+// sets fc_sparse false instead: the next clear is of every node.
+template <class EachPair>
+void note_contact_force_nodes(ContactState& cs, size_t pairs, EachPair&& each) {
+    if (!cs.fc_sparse) return;
+    std::vector<NodeId>& list = cs.fc_nodes;
+    // (a pair reaches at least its target and the contactor's three vertices)
+    bool overflow = 4 * pairs > list.capacity() - list.size();
+    if (!overflow) {
+        each([&](NodeId i, Vec2) {
+            if (list.size() == list.capacity()) {
+                overflow = true;
+                return;
+            }
+            list.push_back(i);
+        });
+    }
+    if (overflow) {
+        cs.fc_sparse = false;
+        list.clear();
+        return;
+    }
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+}
+
 // The real nodes [lo, hi] the forces of pair (target j, contactor c) can reach: the target's
 // (an edge target: its end nodes) and body c's node range, which holds every vertex, virtual-node
 // parent and welded copy of its contactor geometry (a conservative span, without the walk).
@@ -1172,6 +1200,15 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
         c = rbody[r];
         return rout[r];
     };
+    // (the nodes they reach, needed here or not: a superset of the f_contact entries written)
+    note_contact_force_nodes(s.contact, total, [&](auto&& visit) {
+        for (size_t idx = 0; idx < total; ++idx) {
+            NodeId j;
+            BodyId c;
+            const PairResult& o = record(order[idx], j, c);
+            visit_pair_forces(ct, j, o, visit);
+        }
+    });
     // every node the pair reaches is needed here: the one-process add (no test per node)
     const uint8_t* all = sh.body_all.data();
     const auto all_needed = [&](NodeId j, BodyId c) {
@@ -1240,7 +1277,9 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         return;
     }
     if (cm.algorithm == ContactAlgorithm::LegacyTriangle) {
-        // baseline A: triangle-to-triangle edge integration (docs/theory.md §7.2-7.3)
+        // baseline A: triangle-to-triangle edge integration (docs/theory.md §7.2-7.3); its
+        // forces do not go through ContactState::fc_nodes
+        cs.fc_sparse = false;
         s.energy.contact = add_legacy_triangle_forces(m, s, cs.legacy);
         cs.active_contacts = cs.legacy.active;
         return;
@@ -1587,7 +1626,13 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             }
         }
     }
-    if (local) {
+    if (!local) {
+        note_contact_force_nodes(cs, static_cast<size_t>(n_next), [&](auto&& visit) {
+            for_places(0, n_next, [&](int32_t, int32_t k) {
+                visit_pair_forces(ct, key_node[in_contact[k]], out[k], visit);
+            });
+        });
+    } else {
         resize_grow(share->own_k, static_cast<size_t>(n_next));
         int32_t* own_k = share->own_k.data();
         for_places(0, n_next, [own_k](int32_t p, int32_t k) { own_k[p] = k; });
@@ -1648,6 +1693,23 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
 }
 
 }  // namespace
+
+bool clear_listed_contact_forces(State& s, NodeId num_nodes) {
+    ContactState& cs = s.contact;
+    if (cs.fc_sparse) {
+        Vec2* const fc = s.f_contact.data();
+        for (const NodeId i : cs.fc_nodes)
+            fc[i] = {};
+        cs.fc_nodes.clear();
+        return true;
+    }
+    // the caller zeroes every node it reads: the empty list is exact from there on
+    const size_t cap = static_cast<size_t>(num_nodes / kSparseContactForceRatio);
+    if (cs.fc_nodes.capacity() < cap) cs.fc_nodes.reserve(cap);  // (the first step)
+    cs.fc_nodes.clear();
+    cs.fc_sparse = true;
+    return false;
+}
 
 Real max_speed2(const Vec2* v, std::span<const std::pair<NodeId, NodeId>> runs) {
     // four running maxima (max is exact and order-free, NaN is skipped by each the same way as

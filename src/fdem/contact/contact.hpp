@@ -102,6 +102,17 @@ struct ContactShare {
 
 struct StepPlan;  // parallel/distributed.hpp
 
+/// One node in kSparseContactForceRatio at most in ContactState::fc_nodes (the capacity the
+/// first full clear reserves); an apply that would list more clears every node next step.
+inline constexpr NodeId kSparseContactForceRatio = 16;
+
+/// Step 2's clear of f_contact, the part ContactState::fc_nodes allows: with fc_sparse, zeroes
+/// f_contact at the listed nodes, empties the list and returns true (f_contact is clear);
+/// else returns false, and the caller must zero f_contact at every node it reads: the list is
+/// then exact (empty, fc_sparse), its capacity reserved on the first call (num_nodes /
+/// kSparseContactForceRatio).
+bool clear_listed_contact_forces(State& s, NodeId num_nodes);
+
 /// The largest |v_i|^2 over the nodes of runs ([first, second) ranges): the skin trigger's
 /// speed (spec §2.3); exact and independent of the order, so a maximum over processes of
 /// their own nodes' values is the serial value.

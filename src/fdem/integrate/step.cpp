@@ -249,13 +249,20 @@ void make_clear_runs(const Model& m, const StepPlan& p) {
     p.clear_valid = true;
 }
 
-// Step 2 of a distributed step: f and f_contact zero on StepPlan::clear_runs; threads split
-// the concatenated runs evenly
+// Step 2 of a distributed step: f zero on StepPlan::clear_runs, and f_contact there too or at
+// the nodes of ContactState::fc_nodes (clear_listed_contact_forces()); threads split the
+// concatenated runs evenly
 void clear_forces(const Model& m, State& s, const StepPlan& p) {
-    if (!p.clear_valid) make_clear_runs(m, p);
+    if (!p.clear_valid) {
+        make_clear_runs(m, p);
+        // nodes new to the runs may hold f_contact that nobody cleared while they were not read
+        s.contact.fc_sparse = false;
+    }
     Vec2* f = s.f.data();
     Vec2* fc = s.f_contact.data();
-    const bool contact = m.contact.algorithm != ContactAlgorithm::None;
+    // f_contact at the nodes the last applies reached when they are few (ContactState::fc_nodes)
+    const bool contact = m.contact.algorithm != ContactAlgorithm::None &&
+                         !clear_listed_contact_forces(s, m.num_nodes());
     const NodeId total = p.clear_count;
     const auto* runs = p.clear_runs.data();
     const NodeId* first = p.clear_first.data();
@@ -319,10 +326,18 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         // a distributed run: only the nodes this process adds forces to (StepPlan::clear_runs)
         clear_forces(m, s, *plan);
     } else if (m.contact.algorithm != ContactAlgorithm::None) {
+        // f_contact: at the nodes the last applies reached when they are few
+        // (ContactState::fc_nodes), else with f at every node
+        if (clear_listed_contact_forces(s, nn)) {
 #pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
-        for (NodeId i = 0; i < nn; ++i) {
-            f[i] = {};
-            fc[i] = {};
+            for (NodeId i = 0; i < nn; ++i)
+                f[i] = {};
+        } else {
+#pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
+            for (NodeId i = 0; i < nn; ++i) {
+                f[i] = {};
+                fc[i] = {};
+            }
         }
     } else {
 #pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)

@@ -10,6 +10,10 @@ namespace fdem {
 
 namespace {
 
+// forces(): the listed nodes (ContactState::fc_nodes) are searched in a set's nodes when they
+// are fewer than 1 in kListedSumRatio of them (a binary search each against one add each)
+constexpr size_t kListedSumRatio = 32;
+
 // Nodes that can receive a contact force (a superset: summing f_contact over them in ascending
 // order gives the same bits as summing over every node of the body, zeros add nothing).
 std::vector<uint8_t> contact_force_nodes(const Model& m, const ContactTopology& ct) {
@@ -118,8 +122,20 @@ void Resultants::forces(const Model& m, const State& s, int32_t set, Vec2& conta
     const Set& st = sets_[static_cast<size_t>(set)];
     // resultant contact force: the nodal contact forces of the last step, in node order (eq. 8.3)
     contact = {};
-    for (NodeId i : st.force_nodes)
-        contact += s.f_contact[static_cast<size_t>(i)];
+    const ContactState& cs = s.contact;
+    if (cs.fc_sparse && cs.fc_nodes.size() * kListedSumRatio < st.force_nodes.size()) {
+        // few nodes can carry a contact force (ContactState::fc_nodes): the same sum without its
+        // zero terms, the same bits (from +0, adding +-0 changes no partial sum)
+        auto it = st.force_nodes.begin();
+        for (const NodeId i : cs.fc_nodes) {
+            it = std::lower_bound(it, st.force_nodes.end(), i);
+            if (it == st.force_nodes.end()) break;
+            if (*it == i) contact += s.f_contact[static_cast<size_t>(i)];
+        }
+    } else {
+        for (NodeId i : st.force_nodes)
+            contact += s.f_contact[static_cast<size_t>(i)];
+    }
     // reaction of the supports (eq. 8.1, computed by step()), in slot order
     reaction = {};
     for (int32_t k : st.slots)

@@ -283,7 +283,10 @@ struct Simulation::Impl {
         const ContactAlgorithm a = model.contact.algorithm;
         const bool pairs = a != ContactAlgorithm::None && a != ContactAlgorithm::LegacyTriangle;
         // (each process adds the contact forces of the nodes it needs only)
-        if (pairs) gather_nodes(state.f_contact.data(), *plan, *comm);
+        if (pairs) {
+            gather_nodes(state.f_contact.data(), *plan, *comm);
+            state.contact.fc_sparse = false;  // (every node written: the next clear is of all)
+        }
         if (checkpoint && pairs) {
             gather_candidates(state, *plan, *comm);
             gather_active(state, *plan, *comm);

@@ -153,6 +153,40 @@ TEST_F(CheckpointTest, RestartIsBitwiseIdenticalWithFrictionalContact) {
 }
 
 // No padding or uninitialised bytes reach the file: the same state gives the same bytes.
+// Reading a checkpoint writes f_contact at every node, so the next step must clear every node
+// (ContactState::fc_sparse false), not only the nodes the state's last applies reached: else
+// the file's contact forces at other nodes would stay in f_contact (and in bodies.csv).
+TEST(CheckpointContactForces, ReadingIntoARunningStateClearsEveryContactForce) {
+    scenes::ParticleOptions o;
+    o.nx = o.ny = 12;
+    const Model m = scenes::make_particle_box(o);
+    const Real dt = 0.5 * stable_time_step(m);
+    State a = make_state(m, dt);
+    while ((a.contact.active_contacts < 3 || !a.contact.fc_sparse) && a.step < 3000)
+        step(m, a);
+    ASSERT_GE(a.contact.active_contacts, 3);
+    ASSERT_TRUE(a.contact.fc_sparse);
+    const std::string path = temp_path("contact_forces.fdck");
+    write_checkpoint(path, m, a, {});
+    const std::vector<NodeId> at_checkpoint = a.contact.fc_nodes;
+    for (int k = 0; k < 300; ++k)  // on: other pairs, another list
+        step(m, a);
+    ASSERT_TRUE(a.contact.fc_sparse);
+    ASSERT_NE(a.contact.fc_nodes, at_checkpoint);
+    RunProgress q;
+    read_checkpoint(path, m, a, q);  // into the running state
+    EXPECT_FALSE(a.contact.fc_sparse);
+    State b = make_state(m, dt);
+    read_checkpoint(path, m, b, q);
+    for (int k = 0; k < 50; ++k) {
+        step(m, a);
+        step(m, b);
+        ASSERT_TRUE(same_bits(a.f_contact, b.f_contact)) << "step " << k;
+    }
+    EXPECT_TRUE(same_bits(a.x, b.x));
+    fs::remove(path);
+}
+
 TEST_F(CheckpointTest, EqualStatesGiveEqualFiles) {
     const Model& m = model();
     State s = make_state(m, dt());
@@ -286,7 +320,10 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // 976 -> 1024: ContactState::box_bodies, box_mark, box_list_valid (the contactor bodies of
     // the candidates, whose boxes the narrow phase computes; scratch, cleared where the
     // candidates are read from a checkpoint, not saved)
-    EXPECT_EQ(sizeof(ContactState), 1024u) << "ContactState changed: update io/checkpoint.cpp";
+    // 1024 -> 1056: ContactState::fc_nodes, fc_sparse (the nodes whose f_contact the last
+    // applies reached, which the next step clears; scratch: reading a checkpoint writes
+    // f_contact and sets fc_sparse false, not saved)
+    EXPECT_EQ(sizeof(ContactState), 1056u) << "ContactState changed: update io/checkpoint.cpp";
     // 1048 -> 1072: State::scratch_load (the load forces of the current step, rewritten at the
     // start of every step from x^n; not saved)
     // 1072 -> 1096: State::bc_reaction (the supports' reactions of the last step, rewritten by
@@ -311,7 +348,8 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     EXPECT_EQ(sizeof(ExactSum), 552u) << "ExactSum changed: update io/checkpoint.cpp";
     // 4632 -> 4704: ContactState 904 -> 976 above
     // 4704 -> 4752: ContactState 976 -> 1024 above
-    EXPECT_EQ(sizeof(State), 4752u) << "State changed: update io/checkpoint.cpp";
+    // 4752 -> 4784: ContactState 1024 -> 1056 above
+    EXPECT_EQ(sizeof(State), 4784u) << "State changed: update io/checkpoint.cpp";
 }
 
 // Loads (theory §4.1): the half of the load work that belongs after t^n travels in
