@@ -1151,35 +1151,36 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
         at[2 * nruns + 1] = (sh.recv_displs[u] + sh.recv_counts[u]) / kW;
         ++nruns;
     }
-    if (nruns == 0) {
-        std::copy(own_k, own_k + n_own, order);
-    } else {
+    // (the keys are distinct: each pair has one owner. The own records below the smallest
+    // received head go in one tight loop; most records are own, the received ones lie along
+    // the partition's boundary)
+    {
         int32_t p = 0;  // the next own record
-        for (size_t idx = 0; idx < total; ++idx) {
-            int32_t best = -1;  // the run of the smallest key; -1: the own record
+        size_t idx = 0;
+        while (idx < total) {
+            int32_t best = -1;  // the run of the smallest head key
             NodeId bj = 0;
             BodyId bc = 0;
-            if (p < n_own) {
-                const int32_t pr = in_contact[own_k[p]];
-                bj = cand_node[pr];
-                bc = cand_body[pr];
-            }
-            bool have = p < n_own;
             for (int32_t r = 0; r < nruns; ++r) {
                 const int32_t h = at[2 * r];
                 if (h == at[2 * r + 1]) continue;
-                if (!have || rnode[h] < bj || (rnode[h] == bj && rbody[h] < bc)) {
+                if (best < 0 || rnode[h] < bj || (rnode[h] == bj && rbody[h] < bc)) {
                     best = r;
                     bj = rnode[h];
                     bc = rbody[h];
-                    have = true;
                 }
             }
-            if (best < 0) {
-                order[idx] = own_k[p++];
-            } else {
-                order[idx] = -1 - at[2 * best]++;
+            if (best < 0) {  // every received record placed: the rest are own
+                std::copy(own_k + p, own_k + n_own, order + idx);
+                break;
             }
+            for (; p < n_own; ++p) {
+                const int32_t pr = in_contact[own_k[p]];
+                const NodeId j = cand_node[pr];
+                if (j > bj || (j == bj && cand_body[pr] > bc)) break;
+                order[idx++] = own_k[p];
+            }
+            order[idx++] = -1 - at[2 * best]++;
         }
     }
 
