@@ -12,7 +12,6 @@
 #include "fdem/assert.hpp"
 #include "fdem/build.hpp"
 
-#include <emmintrin.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -1714,6 +1713,7 @@ bool clear_listed_contact_forces(State& s, NodeId num_nodes) {
 }
 
 Real max_speed2(const Vec2* v, std::span<const std::pair<NodeId, NodeId>> runs) {
+#ifdef __SSE2__
     // four running maxima in two SSE2 registers (max is exact and order-free): x^2 + y^2 of
     // two nodes at once, as norm2() computes it (no FMA: -ffp-contract=off). maxpd(a, m)
     // returns m when a is NaN, as std::max(m, a) does, so NaN is skipped the same way (and the
@@ -1741,6 +1741,20 @@ Real max_speed2(const Vec2* v, std::span<const std::pair<NodeId, NodeId>> runs) 
     _mm_store_pd(l, m0);
     _mm_store_pd(l + 2, m1);
     return std::max(std::max(std::max(l[0], l[1]), std::max(l[2], l[3])), tail);
+#else
+    // (without SSE2: four running maxima, four independent dependency chains)
+    Real v2s[4] = {0, 0, 0, 0};
+    for (const auto& [b, e] : runs) {
+        NodeId i = b;
+        for (; i + 4 <= e; i += 4) {
+            for (int k = 0; k < 4; ++k)
+                v2s[k] = std::max(v2s[k], norm2(v[i + k]));
+        }
+        for (; i < e; ++i)
+            v2s[0] = std::max(v2s[0], norm2(v[i]));
+    }
+    return std::max(std::max(v2s[0], v2s[1]), std::max(v2s[2], v2s[3]));
+#endif
 }
 
 void contact_exchange_counts(const Model& m, const State& s, const StepPlan& plan,
