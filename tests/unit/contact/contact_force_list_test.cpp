@@ -6,23 +6,17 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <cstring>
 #include <vector>
 
 #include "fdem/measure.hpp"
 #include "fdem/simulate.hpp"
 #include "support/scenes.hpp"
+#include "support/topology_compare.hpp"
 
 namespace fdem {
 namespace {
 
-bool same_bits(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec2)) == 0;
-}
-
-bool same_bits(Vec2 a, Vec2 b) {
-    return std::memcmp(&a, &b, sizeof(Vec2)) == 0;
-}
+using fdem::testing::same_bits;
 
 // fc_sparse: every node with a non-zero f_contact is listed (the list is ascending, unique)
 ::testing::AssertionResult list_holds_every_force(const State& s) {

@@ -5,13 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <utility>
 #include <vector>
 
 #include "contact/contact.hpp"
+#include "support/topology_compare.hpp"
 
 namespace fdem {
 namespace {
@@ -26,9 +26,7 @@ Real reference(const std::vector<Vec2>& v, const std::vector<std::pair<NodeId, N
     return m;
 }
 
-bool same_bits(Real a, Real b) {
-    return std::memcmp(&a, &b, sizeof(Real)) == 0;
-}
+using fdem::testing::same_bits;
 
 TEST(MaxSpeed2, TheBitsOfTheOrderedMaximumForAnyRuns) {
     std::mt19937 rng(11);
