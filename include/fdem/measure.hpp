@@ -88,6 +88,16 @@ public:
     /// The nodes whose f or f_contact forces() reads for one set, ascending (a distributed run
     /// delivers their contact forces to the process that sums the set).
     std::vector<NodeId> read_nodes(int32_t set) const;
+    /// The part of read_nodes() whose f_contact forces() reads (the nodes that can carry a
+    /// contact force), ascending.
+    const std::vector<NodeId>& contact_read_nodes(int32_t set) const {
+        return sets_[static_cast<size_t>(set)].force_nodes;
+    }
+    /// The part of read_nodes() whose f forces() reads (the fixed bodies' nodes a contact or a
+    /// load can act on: their reaction, eq. 8.2), ascending.
+    const std::vector<NodeId>& force_read_nodes(int32_t set) const {
+        return sets_[static_cast<size_t>(set)].fixed_nodes;
+    }
 
     /// Contact resultant and reaction of one set for the last step [N/m].
     void forces(const Model& m, const State& s, int32_t set, Vec2& contact, Vec2& reaction) const;

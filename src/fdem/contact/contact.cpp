@@ -933,16 +933,21 @@ void plan_body_ranks(const Model& m, const StepPlan& plan) {
     const NodeId nn = m.num_nodes();
     const int32_t me = plan.rank;
     const auto& rd = sh.force_readers;
+    constexpr uint8_t kBoth = kNeedContact | kNeedForce;
     sh.need.assign(static_cast<size_t>(nn), 0);
     for (NodeId i = 0; i < nn; ++i)
-        sh.need[static_cast<size_t>(i)] = plan.node_owner[static_cast<size_t>(i)] == me;
+        sh.need[static_cast<size_t>(i)] = plan.node_owner[static_cast<size_t>(i)] == me ? kBoth : 0;
     sh.other_reader.assign(static_cast<size_t>(nn), 0);
     for (const auto& [i, r] : rd) {
         if (r == me) {
-            sh.need[static_cast<size_t>(i)] = 1;
+            sh.need[static_cast<size_t>(i)] |= kNeedContact;
         } else {
             sh.other_reader[static_cast<size_t>(i)] = 1;
         }
+    }
+    // (a node in f_readers is in force_readers: its contact forces reach the reader)
+    for (const auto& [i, r] : sh.f_readers) {
+        if (r == me) sh.need[static_cast<size_t>(i)] |= kNeedForce;
     }
     const BodyId nb = m.num_bodies();
     sh.stamp.assign(static_cast<size_t>(plan.procs), -1);
@@ -969,7 +974,7 @@ void plan_body_ranks(const Model& m, const StepPlan& plan) {
         sh.body_rank_begin[static_cast<size_t>(b) + 1] = static_cast<int32_t>(sh.body_rank.size());
         bool all = true;
         for (NodeId i = body.node_begin; i < body.node_end && all; ++i)
-            all = sh.need[static_cast<size_t>(i)] != 0;
+            all = sh.need[static_cast<size_t>(i)] == kBoth;
         sh.body_all[static_cast<size_t>(b)] = all;
     }
     sh.stamp.assign(static_cast<size_t>(plan.procs), -1);  // (free for the records' ticks)
@@ -1212,11 +1217,12 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
     });
     // every node the pair reaches is needed here: the one-process add (no test per node)
     const uint8_t* all = sh.body_all.data();
+    constexpr uint8_t kBoth = kNeedContact | kNeedForce;
     const auto all_needed = [&](NodeId j, BodyId c) {
         if (!all[c]) return false;
-        if (j < ct.num_real_nodes) return need[j] != 0;
+        if (j < ct.num_real_nodes) return need[j] == kBoth;
         const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
-        return need[e[0]] != 0 && need[e[1]] != 0;
+        return need[e[0]] == kBoth && need[e[1]] == kBoth;
     };
     const int max_threads = omp_get_max_threads();
     if (max_threads < 2 || total < static_cast<size_t>(kMinParallelApply)) {
@@ -1229,9 +1235,8 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
                 continue;
             }
             visit_pair_forces(ct, j, o, [f, fc, need](NodeId i, Vec2 fi) {
-                if (!need[i]) return;
-                f[i] += fi;
-                fc[i] += fi;
+                if (need[i] & kNeedForce) f[i] += fi;
+                if (need[i] & kNeedContact) fc[i] += fi;
             });
         }
         return;
@@ -1250,9 +1255,9 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
             pair_span(m, ct, j, c, a, b);
             if (b < lo || a >= hi) continue;
             visit_pair_forces(ct, j, o, [f, fc, need, lo, hi](NodeId i, Vec2 fi) {
-                if (i < lo || i >= hi || !need[i]) return;
-                f[i] += fi;
-                fc[i] += fi;
+                if (i < lo || i >= hi) return;
+                if (need[i] & kNeedForce) f[i] += fi;
+                if (need[i] & kNeedContact) fc[i] += fi;
             });
         }
     }
@@ -1834,16 +1839,26 @@ void gather_active(State& s, const StepPlan& plan, const Comm& comm) {
     sh.active_full = true;
 }
 
-void set_force_readers(StepPlan& plan, std::span<const std::vector<NodeId>> nodes,
+void set_force_readers(StepPlan& plan, std::span<const std::vector<NodeId>> contact_nodes,
+                       std::span<const std::vector<NodeId>> force_nodes,
                        std::span<const int32_t> set_rank) {
     ContactShare& sh = plan.contact;
-    sh.force_readers.clear();
-    for (size_t k = 0; k < nodes.size(); ++k) {
-        const int32_t r = set_rank[k];
-        for (const NodeId i : nodes[k]) {
-            if (plan.node_owner[static_cast<size_t>(i)] != r) sh.force_readers.emplace_back(i, r);
+    const auto readers = [&](std::span<const std::vector<NodeId>> nodes,
+                             std::vector<std::pair<NodeId, int32_t>>& out) {
+        for (size_t k = 0; k < nodes.size(); ++k) {
+            const int32_t r = set_rank[k];
+            for (const NodeId i : nodes[k]) {
+                if (plan.node_owner[static_cast<size_t>(i)] != r) out.emplace_back(i, r);
+            }
         }
-    }
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+    };
+    sh.f_readers.clear();
+    readers(force_nodes, sh.f_readers);
+    sh.force_readers.clear();  // f_contact or f: the union
+    readers(contact_nodes, sh.force_readers);
+    sh.force_readers.insert(sh.force_readers.end(), sh.f_readers.begin(), sh.f_readers.end());
     std::sort(sh.force_readers.begin(), sh.force_readers.end());
     sh.force_readers.erase(std::unique(sh.force_readers.begin(), sh.force_readers.end()),
                            sh.force_readers.end());

@@ -45,13 +45,20 @@ inline constexpr size_t kContactRecordBytes = sizeof(NodeId) + sizeof(BodyId) + 
 /// The contact sums a distributed step reduces with its other exact sums (ContactShare::sums).
 inline constexpr int kContactSums = 5;
 
+/// ContactShare::need bits: the process adds contact forces to f_contact / to f at the node.
+inline constexpr uint8_t kNeedContact = 1;
+inline constexpr uint8_t kNeedForce = 2;
+
 /// Scratch of a process's share of the narrow phase in a distributed run (StepPlan::contact).
 struct ContactShare {
-    /// Nodes whose f and f_contact a process other than their owner reads every step, as
+    /// Nodes whose f_contact or f a process other than their owner reads every step, as
     /// (node, process) pairs, ascending: the nodes of the bodies.csv sets that process sums
     /// (Simulation). The pairs touching them are sent to that process too. Set it with
     /// set_force_readers().
     std::vector<std::pair<NodeId, int32_t>> force_readers;
+    /// The entries of force_readers whose f the process reads too (a fixed body's reaction,
+    /// eq. 8.2): only there does it clear f and add contact forces to f beside f_contact.
+    std::vector<std::pair<NodeId, int32_t>> f_readers;
 
     // --- the exchange of the pairs in contact (local apply; grow-only buffers) ---
     /// the records to the other processes, by destination (doubles: kContactRecordBytes / 8
@@ -69,7 +76,9 @@ struct ContactShare {
     mutable std::vector<int64_t> stamp;             ///< per process (scratch)
     mutable int64_t tick = 0;                       ///< stamp of the current record
     mutable std::vector<int32_t> own_k, heads;      ///< the merge's scratch
-    /// per real node: this process adds forces to it (it owns it or reads it every step)
+    /// per real node: the arrays this process adds contact forces to there, kNeedContact
+    /// (f_contact: it owns the node or reads its contact force) | kNeedForce (f: it owns the node
+    /// or reads its f, ContactShare::f_readers); 0: neither
     mutable std::vector<uint8_t> need;
     /// per body: the processes that need a node of it (body_rank[body_rank_begin[b] ..
     /// body_rank_begin[b + 1]), ascending)
@@ -145,10 +154,12 @@ void finish_contact_sums(State& s, const StepPlan& plan, const Comm& comm, const
 /// new partition is made. Collective; allocates.
 void gather_active(State& s, const StepPlan& plan, const Comm& comm);
 
-/// The nodes whose forces a process other than their owner reads (ContactShare::force_readers),
-/// from the sets each process sums: nodes[k] of set k are read by process set_rank[k]. Every
-/// process must pass the same lists. Not collective.
-void set_force_readers(StepPlan& plan, std::span<const std::vector<NodeId>> nodes,
+/// The nodes whose forces a process other than their owner reads (ContactShare::force_readers
+/// and f_readers), from the sets each process sums: contact_nodes[k] (f_contact) and
+/// force_nodes[k] (f) of set k are read by process set_rank[k] (Resultants::contact_read_nodes()
+/// and force_read_nodes()). Every process must pass the same lists. Not collective.
+void set_force_readers(StepPlan& plan, std::span<const std::vector<NodeId>> contact_nodes,
+                       std::span<const std::vector<NodeId>> force_nodes,
                        std::span<const int32_t> set_rank);
 
 /// The exchange of contact records that plan's process makes at a step of state s (fdem

@@ -217,56 +217,56 @@ bool node_update_uses_avx512() {
 
 namespace {
 
-// StepPlan::clear_runs: the owned nodes, GhostExchange::static_need (the other nodes of its
-// element runs and chunks, the load nodes) and the nodes of the bodies.csv sets it sums
-// (ContactShare::force_readers): every node its element pass, loads and contact apply write
+// mark[i] != 0 as runs
+void make_runs(std::span<const uint8_t> mark, NodeRuns& out) {
+    const NodeId nn = static_cast<NodeId>(mark.size());
+    out.runs.clear();
+    out.first.clear();
+    out.count = 0;
+    for (NodeId i = 0; i < nn;) {
+        if (!mark[static_cast<size_t>(i)]) {
+            ++i;
+            continue;
+        }
+        NodeId e = i + 1;
+        while (e < nn && mark[static_cast<size_t>(e)])
+            ++e;
+        out.runs.emplace_back(i, e);
+        out.first.push_back(out.count);
+        out.count += e - i;
+        i = e;
+    }
+    out.first.push_back(out.count);
+}
+
+// StepPlan::clear_f: the owned nodes, GhostExchange::static_need (the other nodes of its element
+// runs and chunks, the load nodes) and the nodes of the bodies.csv sets it sums whose f it reads
+// (ContactShare::f_readers): every node its element pass, loads and contact apply write f at;
+// StepPlan::clear_fc: those and the nodes whose f_contact only its sets read
+// (ContactShare::force_readers), where the contact apply writes f_contact only
 void make_clear_runs(const Model& m, const StepPlan& p) {
     std::vector<uint8_t> mark(static_cast<size_t>(m.num_nodes()), 0);
     for (const auto& [b, e] : p.own_runs)
         std::fill(mark.begin() + b, mark.begin() + e, uint8_t{1});
     for (const NodeId i : p.ghosts.static_need)
         mark[static_cast<size_t>(i)] = 1;
+    for (const auto& [i, r] : p.contact.f_readers) {
+        if (r == p.rank) mark[static_cast<size_t>(i)] = 1;
+    }
+    make_runs(mark, p.clear_f);
     for (const auto& [i, r] : p.contact.force_readers) {
         if (r == p.rank) mark[static_cast<size_t>(i)] = 1;
     }
-    p.clear_runs.clear();
-    p.clear_first.clear();
-    p.clear_count = 0;
-    for (NodeId i = 0; i < m.num_nodes();) {
-        if (!mark[static_cast<size_t>(i)]) {
-            ++i;
-            continue;
-        }
-        NodeId e = i + 1;
-        while (e < m.num_nodes() && mark[static_cast<size_t>(e)])
-            ++e;
-        p.clear_runs.emplace_back(i, e);
-        p.clear_first.push_back(p.clear_count);
-        p.clear_count += e - i;
-        i = e;
-    }
-    p.clear_first.push_back(p.clear_count);
+    make_runs(mark, p.clear_fc);
     p.clear_valid = true;
 }
 
-// Step 2 of a distributed step: f zero on StepPlan::clear_runs, and f_contact there too or at
-// the nodes of ContactState::fc_nodes (clear_listed_contact_forces()); threads split the
-// concatenated runs evenly
-void clear_forces(const Model& m, State& s, const StepPlan& p) {
-    if (!p.clear_valid) {
-        make_clear_runs(m, p);
-        // nodes new to the runs may hold f_contact that nobody cleared while they were not read
-        s.contact.fc_sparse = false;
-    }
-    Vec2* f = s.f.data();
-    Vec2* fc = s.f_contact.data();
-    // f_contact at the nodes the last applies reached when they are few (ContactState::fc_nodes)
-    const bool contact = m.contact.algorithm != ContactAlgorithm::None &&
-                         !clear_listed_contact_forces(s, m.num_nodes());
-    const NodeId total = p.clear_count;
-    const auto* runs = p.clear_runs.data();
-    const NodeId* first = p.clear_first.data();
-    const int32_t nruns = static_cast<int32_t>(p.clear_runs.size());
+// zero a[i] for the nodes of runs; threads split them evenly
+void clear_runs(Vec2* a, const NodeRuns& nr) {
+    const NodeId total = nr.count;
+    const auto* runs = nr.runs.data();
+    const NodeId* first = nr.first.data();
+    const int32_t nruns = static_cast<int32_t>(nr.runs.size());
 #pragma omp parallel if (total >= kMinParallelNodes)
     {
         const int nthr = omp_get_num_threads(), t = omp_get_thread_num();
@@ -277,11 +277,25 @@ void clear_forces(const Model& m, State& s, const StepPlan& p) {
         for (NodeId k = k0; k < k1 && r < nruns; ++r) {
             const NodeId b = runs[r].first + (k - first[r]);
             const NodeId e = std::min(runs[r].second, b + (k1 - k));
-            std::fill(f + b, f + e, Vec2{});
-            if (contact) std::fill(fc + b, fc + e, Vec2{});
+            std::fill(a + b, a + e, Vec2{});
             k += e - b;
         }
     }
+}
+
+// Step 2 of a distributed step: f zero on StepPlan::clear_f, and f_contact on clear_fc or at the
+// nodes of ContactState::fc_nodes (clear_listed_contact_forces())
+void clear_forces(const Model& m, State& s, const StepPlan& p) {
+    if (!p.clear_valid) {
+        make_clear_runs(m, p);
+        // nodes new to the runs may hold f_contact that nobody cleared while they were not read
+        s.contact.fc_sparse = false;
+    }
+    clear_runs(s.f.data(), p.clear_f);
+    // f_contact at the nodes the last applies reached when they are few (ContactState::fc_nodes)
+    if (m.contact.algorithm != ContactAlgorithm::None &&
+        !clear_listed_contact_forces(s, m.num_nodes()))
+        clear_runs(s.f_contact.data(), p.clear_fc);
 }
 
 // The step; with a plan, as one process of a distributed run (parallel/distributed.hpp): the
@@ -323,7 +337,8 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     if (plan != nullptr && plan->ghosts.active &&
         (m.contact.algorithm == ContactAlgorithm::None ||
          m.contact.algorithm == ContactAlgorithm::Smooth)) {
-        // a distributed run: only the nodes this process adds forces to (StepPlan::clear_runs)
+        // a distributed run: only the nodes this process adds forces to (StepPlan::clear_f,
+        // clear_fc)
         clear_forces(m, s, *plan);
     } else if (m.contact.algorithm != ContactAlgorithm::None) {
         // f_contact: at the nodes the last applies reached when they are few

@@ -112,19 +112,22 @@ std::vector<PartCounts> decompose(const Model& m, const State& s,
     // the node owners handed from one to the next
     std::vector<int32_t> node_owner = node_owners(m, parts, group_owner);
     // the bodies.csv sets, each summed by the process that owns most of its nodes (as a run)
-    std::vector<std::vector<NodeId>> set_nodes;
+    std::vector<std::vector<NodeId>> set_contact_nodes, set_force_nodes;
     std::vector<int32_t> set_rank;
     if (pairs && sets != nullptr && parts > 1) {
         set_rank = sets->set_ranks(parts, node_owner);
-        for (int32_t k = 0; k < sets->num_sets(); ++k)
-            set_nodes.push_back(sets->read_nodes(k));
+        for (int32_t k = 0; k < sets->num_sets(); ++k) {
+            set_contact_nodes.push_back(sets->contact_read_nodes(k));
+            set_force_nodes.push_back(sets->force_read_nodes(k));
+        }
     }
     for (int32_t r = 0; r < parts; ++r) {
         StepPlan p = make_part_plan(m, r, parts, std::move(node_owner));
         if (p.ghosts.active) ghost_receive_lists(m, s, p);
         out[static_cast<size_t>(r)] = own_counts(m, s, p);
         if (pairs) {
-            if (!set_rank.empty()) set_force_readers(p, set_nodes, set_rank);
+            if (!set_rank.empty())
+                set_force_readers(p, set_contact_nodes, set_force_nodes, set_rank);
             contact_exchange_counts(m, s, p, to, may_send);
             for (int32_t q = 0; q < parts; ++q) {
                 const size_t u = static_cast<size_t>(q), ru = static_cast<size_t>(r);

@@ -26,6 +26,14 @@ namespace fdem {
 
 // kNodeGroup (integrate/node_update.hpp): the unit of node ownership.
 
+/// A set of nodes as ranges [first, second) ascending, with the prefix counts that let threads
+/// split it evenly (StepPlan::clear_f, clear_fc).
+struct NodeRuns {
+    std::vector<std::pair<NodeId, NodeId>> runs;
+    std::vector<NodeId> first;  ///< nodes before run k (prefix sums; one more entry: count)
+    NodeId count = 0;           ///< the number of nodes
+};
+
 /// Ghost nodes of a process (spec D6): the nodes it reads but does not own, whose x and v its
 /// owners send after every step instead of an all-gather of every node. They are the nodes of
 /// the element chunks it runs (D6.1, "owner computes"), of the loads (every process evaluates
@@ -66,15 +74,16 @@ struct StepPlan {
     mutable std::vector<double> bc_buffer;      ///< gather buffer (2 per slot)
     mutable GhostExchange ghosts;               ///< neighbour exchange of x and v
     mutable Real max_speed2 = 0;  ///< this step's skin speed max |v|^2 over all processes
-    /// the nodes whose f and f_contact the step clears, as ranges [first, second) ascending:
-    /// those this process adds forces to (owned, GhostExchange::static_need, the nodes of the
-    /// bodies.csv sets it sums), with ghosts and smooth or no contact (else every node); the
+    /// the nodes whose f the step clears: those this process adds forces to (owned,
+    /// GhostExchange::static_need, the nodes of the bodies.csv sets it sums whose f it reads:
+    /// ContactShare::f_readers), with ghosts and smooth or no contact (else every node); the
     /// other nodes' forces are neither written nor read by it (owners' values arrive by
     /// gather_nodes() where they are written out). Made by the first step of the plan and
-    /// after set_force_readers() (clear_valid = false); clear_count = their number of nodes
-    mutable std::vector<std::pair<NodeId, NodeId>> clear_runs;
-    mutable std::vector<NodeId> clear_first;  ///< nodes before run k (prefix sums)
-    mutable NodeId clear_count = 0;
+    /// after set_force_readers() (clear_valid = false)
+    mutable NodeRuns clear_f;
+    /// the nodes whose f_contact the step clears when ContactState::fc_nodes does not list
+    /// them: clear_f's and those of the sets it sums whose f_contact only it reads
+    mutable NodeRuns clear_fc;
     mutable bool clear_valid = false;
     bool viscous = false;  ///< a material has viscosity: the viscous power every step
 };

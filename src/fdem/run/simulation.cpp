@@ -155,10 +155,12 @@ struct Simulation::Impl {
     /// every new plan.
     void share_force_readers() {
         if (!plan || set_rank.empty() || !resultants) return;
-        std::vector<std::vector<NodeId>> nodes(set_rank.size());
-        for (size_t k = 0; k < nodes.size(); ++k)
-            nodes[k] = resultants->read_nodes(static_cast<int32_t>(k));
-        set_force_readers(*plan, nodes, set_rank);
+        std::vector<std::vector<NodeId>> contact(set_rank.size()), force(set_rank.size());
+        for (size_t k = 0; k < contact.size(); ++k) {
+            contact[k] = resultants->contact_read_nodes(static_cast<int32_t>(k));
+            force[k] = resultants->force_read_nodes(static_cast<int32_t>(k));
+        }
+        set_force_readers(*plan, contact, force, set_rank);
     }
 
     /// Every set's impulses from the process that sums it, on every process. Collective.

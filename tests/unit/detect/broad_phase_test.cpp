@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <random>
 
@@ -67,7 +68,8 @@ TEST(BroadPhase, EqualsBruteForceOnRandomLayouts) {
 // A distributed run's local broad phase (spec D5.3): with the targets of one process only
 // (TargetOwner), the list is exactly the full list's pairs of those targets, in the same order,
 // with the same sub-triangles, on both inner loops; the processes' lists together are the full
-// list. Random owners per node (edge targets go with their first end node).
+// list. Random owners per node (edge targets go with their first end node) on even layouts,
+// and on odd ones owners by stripes of x (as a spatial partition).
 TEST(BroadPhase, OwnTargetsGiveTheFullListsPairsOfThoseTargets) {
     std::mt19937 rng(99);
     size_t edge_pairs = 0;
@@ -83,6 +85,18 @@ TEST(BroadPhase, OwnTargetsGiveTheFullListsPairsOfThoseTargets) {
         std::vector<int32_t> owner(static_cast<size_t>(m.num_nodes()));
         for (int32_t& o : owner)
             o = up(rng);
+        const bool stripes = layout % 2 == 1;
+        if (stripes) {
+            Real lo = s.x[0].x, hi = lo;
+            for (const Vec2& p : s.x) {
+                lo = std::min(lo, p.x);
+                hi = std::max(hi, p.x);
+            }
+            for (size_t i = 0; i < owner.size(); ++i) {
+                const auto o = static_cast<int32_t>((s.x[i].x - lo) / (hi - lo) * kProcs);
+                owner[i] = std::min(o, kProcs - 1);
+            }
+        }
         size_t pairs = 0;
         for (int32_t rank = 0; rank < kProcs; ++rank) {
             for (const BroadKernel kernel : {BroadKernel::Auto, BroadKernel::Scalar}) {

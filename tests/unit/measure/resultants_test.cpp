@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@ namespace fdem {
 namespace {
 
 const std::string kDemo = FDEM_SOURCE_DIR "/examples/03_contact_slide/scenario.toml";
+// fixed walls around 2 500 particles
+const std::string kParticles = FDEM_SOURCE_DIR "/examples/04_particles/scenario.toml";
 
 TEST(Resultants, SharedSetsSumTheSameBits) {
     Simulation sim = Simulation::from_file(kDemo);
@@ -53,6 +56,34 @@ TEST(Resultants, SharedSetsSumTheSameBits) {
     EXPECT_TRUE(some_contact);  // the block presses on the ground: the sums are not all zero
     EXPECT_EQ(a.time, all.time);
     EXPECT_EQ(b.time, all.time);
+}
+
+// A distributed run clears and adds to f only where a set reads f (a fixed body's reaction,
+// eq. 8.2) and to f_contact where it reads the contact force (contact/contact.cpp
+// set_force_readers()): the two lists are ascending, make up read_nodes(), and f is read only at
+// fixed bodies' nodes.
+TEST(Resultants, ReadNodesAreTheContactReadsAndTheForceReads) {
+    Simulation sim = Simulation::from_file(kParticles);
+    const Model& m = sim.model();
+    const Resultants r(m, sim.state().topology);
+    bool fixed_reads = false, contact_reads = false;
+    for (int32_t k = 0; k < r.num_sets(); ++k) {
+        const std::vector<NodeId>& c = r.contact_read_nodes(k);
+        const std::vector<NodeId>& f = r.force_read_nodes(k);
+        EXPECT_TRUE(std::is_sorted(c.begin(), c.end())) << r.name(k);
+        EXPECT_TRUE(std::is_sorted(f.begin(), f.end())) << r.name(k);
+        std::vector<NodeId> both;
+        std::set_union(c.begin(), c.end(), f.begin(), f.end(), std::back_inserter(both));
+        EXPECT_EQ(both, r.read_nodes(k)) << r.name(k);
+        for (const NodeId i : f) {
+            const Body& b = m.bodies[static_cast<size_t>(m.node_body[static_cast<size_t>(i)])];
+            EXPECT_TRUE(b.fixed) << r.name(k) << " node " << i;
+        }
+        fixed_reads = fixed_reads || !f.empty();
+        contact_reads = contact_reads || !c.empty();
+    }
+    EXPECT_TRUE(fixed_reads);  // the walls are fixed: their reaction reads f
+    EXPECT_TRUE(contact_reads);
 }
 
 // Each set is summed by the process that owns most of the nodes it reads (so that few contact
