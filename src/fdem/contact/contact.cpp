@@ -1843,6 +1843,7 @@ void set_force_readers(StepPlan& plan, std::span<const std::vector<NodeId>> cont
                        std::span<const std::vector<NodeId>> force_nodes,
                        std::span<const int32_t> set_rank) {
     ContactShare& sh = plan.contact;
+    // (node, process) for the nodes of each set its process does not own, ascending, unique
     const auto readers = [&](std::span<const std::vector<NodeId>> nodes,
                              std::vector<std::pair<NodeId, int32_t>>& out) {
         for (size_t k = 0; k < nodes.size(); ++k) {
@@ -1856,12 +1857,8 @@ void set_force_readers(StepPlan& plan, std::span<const std::vector<NodeId>> cont
     };
     sh.f_readers.clear();
     readers(force_nodes, sh.f_readers);
-    sh.force_readers.clear();  // f_contact or f: the union
+    sh.force_readers = sh.f_readers;  // f_contact or f: the union
     readers(contact_nodes, sh.force_readers);
-    sh.force_readers.insert(sh.force_readers.end(), sh.f_readers.begin(), sh.f_readers.end());
-    std::sort(sh.force_readers.begin(), sh.force_readers.end());
-    sh.force_readers.erase(std::unique(sh.force_readers.begin(), sh.force_readers.end()),
-                           sh.force_readers.end());
     sh.body_rank_begin.clear();  // (recomputed with the readers at the next step)
     sh.dest_valid = false;
     plan.clear_valid = false;  // the forces it clears include the read nodes
