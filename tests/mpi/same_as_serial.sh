@@ -9,12 +9,22 @@ fdem=$1 mpiexec=$2 scenario=$3 out=$4 nps=$5
 shift 5
 rm -rf "$out"
 mkdir -p "$out"
-serial=$("$fdem" run "$scenario" --quiet --print-hash --out "$out/serial" "$@" 2>/dev/null)
+# (a run that fails prints its stderr and the exit code: a failure under load says why)
+if ! serial=$("$fdem" run "$scenario" --quiet --print-hash --out "$out/serial" "$@" \
+    2>"$out/serial.err"); then
+    echo "FAIL: the one-process run exited with an error:"
+    cat "$out/serial.err"
+    exit 1
+fi
 echo "serial: $serial"
 fail=0
 for np in $nps; do
-    par=$("$mpiexec" --oversubscribe --bind-to none --mca btl self,vader -np "$np" \
-        "$fdem" run "$scenario" --quiet --print-hash --out "$out/np$np" "$@" 2>/dev/null)
+    if ! par=$("$mpiexec" --oversubscribe --bind-to none --mca btl self,vader -np "$np" \
+        "$fdem" run "$scenario" --quiet --print-hash --out "$out/np$np" "$@" 2>"$out/np$np.err"); then
+        echo "FAIL: mpiexec -np $np exited with an error:"
+        cat "$out/np$np.err"
+        exit 1
+    fi
     echo "np $np: $par"
     if [ "$par" != "$serial" ]; then
         echo "FAIL: the state hash of -np $np differs"

@@ -145,13 +145,53 @@ template <class Visit>
         visit_node_force(ct, q[k], -o.N[k] * o.f, visit);
 }
 
-// the pair's forces added to f and f_contact (fc): of every node, or of the nodes [lo, hi) only
+// the pair's forces added to f and f_contact (fc): of every node, or of the nodes [lo, hi) only.
+// Without welds (the common case) a direct path: the values and order of visit_pair_forces()
+// (target, then vertices 0, 1, 2; a virtual vertex to its parents), with the weld test once per
+// pair instead of per node, the pair's force and coordinates read once into locals (a force
+// store could alias them, so the visits reloaded them after each store) and nothing called
+// (issue #16: ~110 instructions per pair in the visits, callgrind of the saturated pack)
 [[gnu::always_inline]] inline void add_pair_forces(const ContactTopology& ct, Vec2* f, Vec2* fc,
                                                    NodeId j, const PairResult& o) {
-    visit_pair_forces(ct, j, o, [f, fc](NodeId i, Vec2 fi) {
+    const auto add = [ f, fc ](NodeId i, Vec2 fi) __attribute__((always_inline)) {
         f[i] += fi;
         fc[i] += fi;
-    });
+    };
+    if (ct.welded()) {
+        visit_pair_forces(ct, j, o, add);
+        return;
+    }
+    const NodeId nr = ct.num_real_nodes;
+    const Vec2 of = o.f;
+    const Real N[3] = {o.N[0], o.N[1], o.N[2]};
+    const auto& q = ct.sub_tri[static_cast<size_t>(o.tri)];
+    const NodeId q0 = q[0], q1 = q[1], q2 = q[2];
+    if (j < nr) {  // (visit_target_force())
+        add(j, of);
+    } else {
+        const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
+        const NodeId e0 = e[0], e1 = e[1];
+        const Vec2 h = 0.5 * of;
+        add(e0, h);
+        add(e1, h);
+    }
+    // (visit_node_force() without welds; always inlined: as a call it cost ~35 instructions a
+    // vertex)
+    const auto vertex = [&](NodeId i, Vec2 g) __attribute__((always_inline)) {
+        if (i < nr) {
+            add(i, g);
+            return;
+        }
+        const size_t v = static_cast<size_t>(i - nr);
+        const std::array<NodeId, 3> p = ct.virt_parent[v];
+        const std::array<Real, 3> w = ct.virt_weight[v];
+        add(p[0], w[0] * g);
+        add(p[1], w[1] * g);
+        add(p[2], w[2] * g);
+    };
+    vertex(q0, -N[0] * of);
+    vertex(q1, -N[1] * of);
+    vertex(q2, -N[2] * of);
 }
 inline void add_pair_forces(const ContactTopology& ct, Vec2* f, Vec2* fc, NodeId j,
                             const PairResult& o, NodeId lo, NodeId hi) {
