@@ -182,6 +182,12 @@ struct ContactState {
     /// nodes; entries the contactor geometry does not reference are meaningless). Sized once by
     /// init_contact_state(); empty without a weld. Scratch, not saved in checkpoints.
     std::vector<Vec2> xw;
+    /// per contact node (contact id: real, then virtual), the contactor position this step: x
+    /// (xw with a weld) of the real nodes the contactor geometry references, xv of the virtual
+    /// ones; the other entries are meaningless. One load per vertex in the narrow phase's locate
+    /// loop instead of a real-or-virtual branch (issue #16). Filled by update_virtual_nodes();
+    /// scratch, not saved in checkpoints.
+    std::vector<Vec2> xa;
 
     // ---- baseline A (ContactAlgorithm::LegacyTriangle): couples and their history -------
     LegacyTriangleState legacy;

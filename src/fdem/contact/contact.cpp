@@ -422,6 +422,28 @@ void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> 
     cs.need_rebuild = true;
 }
 
+namespace {
+
+// ContactState::xa from the contactor positions xc of the real nodes and cs.xv: the real nodes
+// the contactor geometry references (ContactTopology::body_cnode; every real node of a model
+// without that list), then every virtual node. Sized here when the topology changed.
+void fill_contact_positions(const ContactTopology& ct, ContactState& cs, const Vec2* xc) {
+    const NodeId nr = ct.num_real_nodes;
+    const size_t n = static_cast<size_t>(ct.num_contact_nodes());
+    if (cs.xa.size() != n) cs.xa.resize(n);  // (the first step, or a new topology)
+    Vec2* xa = cs.xa.data();
+    if (ct.body_cnode_begin.size() == ct.body_sub_begin.size() && !ct.body_cnode.empty()) {
+        for (const NodeId i : ct.body_cnode) {
+            if (i < nr) xa[i] = xc[i];
+        }
+    } else {
+        std::copy(xc, xc + nr, xa);
+    }
+    std::copy(cs.xv.begin(), cs.xv.end(), xa + nr);
+}
+
+}  // namespace
+
 void update_virtual_nodes(const Model&, State& s) {
     const ContactTopology& ct = s.topology;
     ContactState& cs = s.contact;
@@ -449,6 +471,7 @@ void update_virtual_nodes(const Model&, State& s) {
             cs.vv[k] = w[0] * weld_mean(ct, v, p[0]) + w[1] * weld_mean(ct, v, p[1]) +
                        w[2] * weld_mean(ct, v, p[2]);
         }
+        fill_contact_positions(ct, cs, xw);
         return;
     }
     for (int32_t k = 0; k < ct.num_virtual(); ++k) {
@@ -457,6 +480,7 @@ void update_virtual_nodes(const Model&, State& s) {
         cs.xv[k] = w[0] * x[p[0]] + w[1] * x[p[1]] + w[2] * x[p[2]];
         cs.vv[k] = w[0] * v[p[0]] + w[1] * v[p[1]] + w[2] * v[p[2]];
     }
+    fill_contact_positions(ct, cs, x);
 }
 
 namespace {
@@ -857,9 +881,10 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
     Real best_min = -kLocateEps;
     Real bN[3], binv = 0;
     Vec2 pb[3];
+    const Vec2* xa = cs.xa.data();  // (= cpos(ct, xc, xv, i) at contact id i)
     for (int32_t k = cs.cand.begin[pr]; k < cs.cand.begin[pr + 1]; ++k) {
         const auto& q = ct.sub_tri[cs.cand.tri[k]];
-        const Vec2 p[3] = {cpos(ct, xc, xv, q[0]), cpos(ct, xc, xv, q[1]), cpos(ct, xc, xv, q[2])};
+        const Vec2 p[3] = {xa[q[0]], xa[q[1]], xa[q[2]]};
         // N_i = c_i * (1 / a2) with |rounding| < 1e-15 relative, so any c_i beyond
         // kRejectMargin |a2| on the outer side gives N_i < -kLocateEps: rejected either way
         // (NaN and a2 == 0 fall through to barycentric(), which decides as before)
