@@ -667,19 +667,36 @@ void gather_forces(State& s, const StepPlan& plan, const Comm& comm) {
 
 namespace {
 // the centre of every node group (kNodeGroup consecutive ids) at the positions x, and a weight
-// of 1 per group
+// of 1 per group. The centres are in units of the groups' mean extent along each axis (the mean
+// width and height of their bounding boxes; unscaled where a mean is 0 or not finite): RCB cuts
+// across the longest extent of its points, so in these units it cuts where it crosses the
+// fewest groups. A group sticks out of a cut by about its own extent, so that is the cut that
+// leaves the thinnest band of interleaved groups (the 6 400-block pack's groups are 16 blocks
+// of a row, 3.2 m x 0.1 m: a cut across x interleaved the two parts over a 3.2 m band, ~8 000
+// ghost nodes per process; docs/parallel.md "Node groups' extent"). Any partition gives the
+// same bits (spec D10).
 void group_centres(NodeId nn, const Vec2* x, std::vector<Vec2>& centre,
                    std::vector<double>& weight) {
     const NodeId groups = (nn + kNodeGroup - 1) / kNodeGroup;
     centre.assign(static_cast<size_t>(groups), Vec2{});
     weight.assign(static_cast<size_t>(groups), 1.0);
+    Real wx = 0, wy = 0;  // sums of the groups' extents
     for (NodeId g = 0; g < groups; ++g) {
         const NodeId b = g * kNodeGroup, e = std::min(nn, b + kNodeGroup);
-        Vec2 c;
-        for (NodeId i = b; i < e; ++i)
+        Vec2 c, lo = x[b], hi = x[b];
+        for (NodeId i = b; i < e; ++i) {
             c += x[i];
+            lo = {std::min(lo.x, x[i].x), std::min(lo.y, x[i].y)};
+            hi = {std::max(hi.x, x[i].x), std::max(hi.y, x[i].y)};
+        }
         centre[static_cast<size_t>(g)] = (1.0 / static_cast<Real>(e - b)) * c;
+        wx += hi.x - lo.x;
+        wy += hi.y - lo.y;
     }
+    if (!(wx > 0) || !(wy > 0) || !std::isfinite(wx) || !std::isfinite(wy)) return;
+    const Real sx = static_cast<Real>(groups) / wx, sy = static_cast<Real>(groups) / wy;
+    for (Vec2& c : centre)
+        c = {c.x * sx, c.y * sy};
 }
 }  // namespace
 

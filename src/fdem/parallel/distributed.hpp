@@ -119,12 +119,14 @@ void check_state_distributed(const Model& m, const State& s, const StepPlan& pla
                              const Comm& comm);
 
 /// The node groups (kNodeGroup consecutive node ids), the unit of ownership: the centre of
-/// each group's reference positions and its weight (the triangles its nodes start, + 1), the
-/// input of a partitioner (parallel/mpi/rcb.hpp rcb_group_owners()).
+/// each group's reference positions, in units of the groups' mean extent along each axis (so
+/// that RCB cuts across the fewest groups), and its weight (the triangles its nodes start, + 1),
+/// the input of a partitioner (parallel/mpi/rcb.hpp rcb_group_owners()).
 void node_group_points(const Model& m, std::vector<Vec2>& centre, std::vector<double>& weight);
 
 /// The input of a new partition of a running model (rebalancing, spec D10): the centre of each
-/// node group at the current positions s.x and its estimated work per step [ns]
+/// node group at the current positions s.x (in the units of node_group_points()) and its
+/// estimated work per step [ns]
 /// (decompose.hpp: kWorkPerTriangle per triangle of a movable body its nodes start,
 /// kWorkPerCandidate per candidate pair and kWorkPerContact per pair in contact whose target node
 /// it holds, + 1). s must be complete (every node's x, the serial candidate list: Simulation

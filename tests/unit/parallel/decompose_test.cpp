@@ -228,18 +228,37 @@ TEST(Decompose, NodeGroupWorkAtTheCurrentPositions) {
     std::vector<Vec2> c0, c1;
     std::vector<double> w0, w1;
     node_group_work(m, sc.s, c0, w0);
+    const size_t groups = static_cast<size_t>((m.num_nodes() + kNodeGroup - 1) / kNodeGroup);
+    // the units of the centres: 1 / the groups' mean bounding-box width and height
+    Real wx = 0, wy = 0;
+    for (size_t g = 0; g < groups; ++g) {
+        const NodeId b = static_cast<NodeId>(g) * kNodeGroup,
+                     e = std::min(m.num_nodes(), b + kNodeGroup);
+        Real lx = 1e300, hx = -1e300, ly = 1e300, hy = -1e300;
+        for (NodeId i = b; i < e; ++i) {
+            lx = std::min(lx, sc.s.x[i].x);
+            hx = std::max(hx, sc.s.x[i].x);
+            ly = std::min(ly, sc.s.x[i].y);
+            hy = std::max(hy, sc.s.x[i].y);
+        }
+        wx += hx - lx;
+        wy += hy - ly;
+    }
+    ASSERT_GT(wx, 0);
+    ASSERT_GT(wy, 0);
+    const Real sx = static_cast<Real>(groups) / wx, sy = static_cast<Real>(groups) / wy;
+    EXPECT_GT(std::max(sx / sy, sy / sx), 1.01);  // (the scene's groups are not square)
     for (Vec2& x : sc.s.x)
-        x += Vec2{0.25, -1.0};  // the centres follow the nodes; the weights stay
+        x += Vec2{0.25, -1.0};  // the centres follow the nodes (the extents stay); the weights stay
     std::vector<Vec2> centre;
     std::vector<double> weight;
     node_group_work(m, sc.s, centre, weight);
-    const size_t groups = static_cast<size_t>((m.num_nodes() + kNodeGroup - 1) / kNodeGroup);
     ASSERT_EQ(centre.size(), groups);
     ASSERT_EQ(weight.size(), groups);
     EXPECT_EQ(weight, w0);
     for (size_t g = 0; g < groups; ++g) {
-        EXPECT_NEAR(centre[g].x, c0[g].x + 0.25, 1e-12);
-        EXPECT_NEAR(centre[g].y, c0[g].y - 1.0, 1e-12);
+        EXPECT_NEAR(centre[g].x, c0[g].x + 0.25 * sx, 1e-9);
+        EXPECT_NEAR(centre[g].y, c0[g].y - 1.0 * sy, 1e-9);
     }
     for (const size_t g : {size_t{0}, groups - 1}) {  // the mean of the group's positions
         const NodeId b = static_cast<NodeId>(g) * kNodeGroup,
@@ -247,8 +266,8 @@ TEST(Decompose, NodeGroupWorkAtTheCurrentPositions) {
         Vec2 sum;
         for (NodeId i = b; i < e; ++i)
             sum += sc.s.x[i];
-        EXPECT_NEAR(centre[g].x, sum.x / (e - b), 1e-12);
-        EXPECT_NEAR(centre[g].y, sum.y / (e - b), 1e-12);
+        EXPECT_NEAR(centre[g].x, sum.x / (e - b) * sx, 1e-9);
+        EXPECT_NEAR(centre[g].y, sum.y / (e - b) * sy, 1e-9);
     }
     node_group_points(m, c1, w1);  // (the reference positions: not where the nodes are now)
     EXPECT_NE(c1[0].x, c0[0].x);
