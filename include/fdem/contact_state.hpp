@@ -183,10 +183,11 @@ struct ContactState {
     /// init_contact_state(); empty without a weld. Scratch, not saved in checkpoints.
     std::vector<Vec2> xw;
     /// per contact node (contact id: real, then virtual), the contactor position this step: x
-    /// (xw with a weld) of the real nodes the contactor geometry references, xv of the virtual
-    /// ones; the other entries are meaningless. One load per vertex in the narrow phase's locate
-    /// loop instead of a real-or-virtual branch (issue #16). Filled by update_virtual_nodes();
-    /// scratch, not saved in checkpoints.
+    /// (xw with a weld) of a real node, xv of a virtual one, for the contact nodes of the
+    /// bodies the narrow phase evaluates as contactors (box_bodies); the other entries are
+    /// meaningless. One load per vertex in the locate loop instead of a real-or-virtual branch
+    /// (issue #16). Filled by add_contact_forces() before the narrow phase; scratch, not saved
+    /// in checkpoints.
     std::vector<Vec2> xa;
 
     // ---- baseline A (ContactAlgorithm::LegacyTriangle): couples and their history -------

@@ -424,22 +424,36 @@ void rebuild_contact_topology(const Model& m, State& s, std::span<const BodyId> 
 
 namespace {
 
-// ContactState::xa from the contactor positions xc of the real nodes and cs.xv: the real nodes
-// the contactor geometry references (ContactTopology::body_cnode; every real node of a model
-// without that list), then every virtual node. Sized here when the topology changed.
-void fill_contact_positions(const ContactTopology& ct, ContactState& cs, const Vec2* xc) {
+// ContactState::xa (contactor positions by contact id, read by the locate loop of
+// evaluate_pair()) from the contactor positions xc of the real nodes and cs.xv (update the
+// virtual nodes first): the contact nodes of the bodies list[0 .. count), the contactors of the
+// pairs about to be evaluated (ContactTopology::body_cnode); every contact node with list ==
+// nullptr or in a model without that list. Only those: on a sparse raster most bodies are in no
+// candidate pair, and filling all (~155 000 nodes at N = 141) cost ~10 % of its step. Sized here
+// when the topology changed (the first step, breaks).
+void fill_contact_positions(const ContactTopology& ct, ContactState& cs, const Vec2* xc,
+                            const BodyId* list, int32_t count) {
     const NodeId nr = ct.num_real_nodes;
     const size_t n = static_cast<size_t>(ct.num_contact_nodes());
-    if (cs.xa.size() != n) cs.xa.resize(n);  // (the first step, or a new topology)
+    if (cs.xa.size() != n) cs.xa.resize(n);
     Vec2* xa = cs.xa.data();
-    if (ct.body_cnode_begin.size() == ct.body_sub_begin.size() && !ct.body_cnode.empty()) {
-        for (const NodeId i : ct.body_cnode) {
-            if (i < nr) xa[i] = xc[i];
-        }
-    } else {
+    const Vec2* xv = cs.xv.data();
+    const bool listed =
+        ct.body_cnode_begin.size() == ct.body_sub_begin.size() && ct.body_cnode_begin.size() > 1;
+    if (list == nullptr || !listed) {
         std::copy(xc, xc + nr, xa);
+        std::copy(cs.xv.begin(), cs.xv.end(), xa + nr);
+        return;
     }
-    std::copy(cs.xv.begin(), cs.xv.end(), xa + nr);
+    const NodeId* cnode = ct.body_cnode.data();
+    for (int32_t k = 0; k < count; ++k) {
+        const BodyId b = list[k];
+        for (int32_t e = ct.body_cnode_begin[static_cast<size_t>(b)];
+             e < ct.body_cnode_begin[static_cast<size_t>(b) + 1]; ++e) {
+            const NodeId i = cnode[e];
+            xa[i] = i < nr ? xc[i] : xv[i - nr];
+        }
+    }
 }
 
 }  // namespace
@@ -471,7 +485,6 @@ void update_virtual_nodes(const Model&, State& s) {
             cs.vv[k] = w[0] * weld_mean(ct, v, p[0]) + w[1] * weld_mean(ct, v, p[1]) +
                        w[2] * weld_mean(ct, v, p[2]);
         }
-        fill_contact_positions(ct, cs, xw);
         return;
     }
     for (int32_t k = 0; k < ct.num_virtual(); ++k) {
@@ -480,7 +493,6 @@ void update_virtual_nodes(const Model&, State& s) {
         cs.xv[k] = w[0] * x[p[0]] + w[1] * x[p[1]] + w[2] * x[p[2]];
         cs.vv[k] = w[0] * v[p[0]] + w[1] * v[p[1]] + w[2] * v[p[2]];
     }
-    fill_contact_positions(ct, cs, x);
 }
 
 namespace {
@@ -935,6 +947,7 @@ void probe_law_depths(const Model& m, State& s, std::span<const BodyId> dirty) {
         const Vec2* xc = ct.welded() ? cs.xw.data() : x;
         find_candidates(m, ct, x, xc, cs.xv.data(), cs.cand, cs.broad);
         cs.box_list_valid = false;
+        fill_contact_positions(ct, cs, xc, nullptr, 0);  // (every contact node: a break step)
         const int32_t npairs = static_cast<int32_t>(cs.cand.node.size());
         PairResult out;
         for (int32_t pr = 0; pr < npairs; ++pr) {
@@ -1447,6 +1460,8 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     const std::vector<BodyId>& box_bodies = share != nullptr ? share->box_bodies : cs.box_bodies;
     const BodyId* box_list = box_bodies.data();
     const int32_t box_count = static_cast<int32_t>(box_bodies.size());
+    // the contactor positions the locate loop reads: those of the listed bodies only
+    fill_contact_positions(ct, cs, xc, box_list, box_count);
     {
         const ContactState& ccs = cs;
         const NodeId* cand_node = cs.cand.node.data();
