@@ -437,7 +437,6 @@ void fill_contact_positions(const ContactTopology& ct, ContactState& cs, const V
     const size_t n = static_cast<size_t>(ct.num_contact_nodes());
     if (cs.xa.size() != n) cs.xa.resize(n);
     Vec2* xa = cs.xa.data();
-    const Vec2* xv = cs.xv.data();
     const bool listed =
         ct.body_cnode_begin.size() == ct.body_sub_begin.size() && ct.body_cnode_begin.size() > 1;
     if (list == nullptr || !listed) {
@@ -446,12 +445,13 @@ void fill_contact_positions(const ContactTopology& ct, ContactState& cs, const V
         return;
     }
     const NodeId* cnode = ct.body_cnode.data();
+    const Vec2* xv = cs.xv.data();
     for (int32_t k = 0; k < count; ++k) {
         const BodyId b = list[k];
         for (int32_t e = ct.body_cnode_begin[static_cast<size_t>(b)];
              e < ct.body_cnode_begin[static_cast<size_t>(b) + 1]; ++e) {
             const NodeId i = cnode[e];
-            xa[i] = i < nr ? xc[i] : xv[i - nr];
+            xa[i] = cpos(ct, xc, xv, i);
         }
     }
 }
