@@ -145,6 +145,10 @@ struct ContactState {
     std::vector<PairResult> pair_out;  ///< as in_contact, scratch (see PairResult)
     /// scratch of the apply with 2+ threads: per thread, its share of the bookkeeping
     std::vector<ContactApplyPart> apply_part;
+    /// scratch of the apply with T >= 2 threads: thread s's list, for each thread t, of the
+    /// pairs of its slice whose forces reach t's node range (segment s T + t: a count, then the
+    /// pairs' indices k in place order; ~k where the pair also reaches another range)
+    std::vector<int32_t> apply_to;
     /// energy continuity through a rebuild of the contact topology (theory eq. 9.26): written
     /// by rebuild_contact_topology() (probe of the old topology at x^n, sorted by (node, body)),
     /// read and cleared by the next add_contact_forces() of the same step; never saved

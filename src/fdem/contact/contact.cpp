@@ -15,6 +15,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -1528,10 +1529,12 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     //     (theory §4.4), the diagnostics counts and maxima, so any split of the bookkeeping
     //     gives the same bits. One thread: one loop does both. T >= 2 threads (at least
     //     kMinParallelApply pairs in contact): thread t first does the bookkeeping of the places
-    //     [n_next t / T, n_next (t + 1) / T) (with the old entries between their keys); then,
-    //     after a barrier, adds the forces of every pair to its own range of real nodes
-    //     [N t / T, N (t + 1) / T) only, in pair order, skipping the pairs whose node span
-    //     (pair_span(): the target and the contactor body's nodes) misses the range.
+    //     [n_next t / T, n_next (t + 1) / T) (with the old entries between their keys) and
+    //     lists, for each thread u, the pairs of its slice whose node span (pair_span(): the
+    //     target and the contactor body's nodes) meets u's range of real nodes
+    //     [N u / T, N (u + 1) / T) (ContactState::apply_to); then, after a barrier, adds the
+    //     forces of the pairs listed for it by threads 0, 1, .., T - 1 (so in pair order) to
+    //     its own range only.
     int32_t span_pos[kPairChunks + 1];  // the place of each span's first pair
     span_pos[0] = 0;
     for (int32_t sp = 0; sp < kPairChunks; ++sp)
@@ -1625,9 +1628,12 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         int64_t deep = 0;
         int32_t sp = 0;  // the span of place p
         int32_t next_span = span_pos[1], off = span_begin[0];
-        // only the pairs in contact, in ascending pair order: an active pair that is a candidate
-        // but not in contact is released at its place of the merged order (by the while loop,
-        // before the next larger key)
+        // only the pairs in contact, in ascending pair order: an old entry that no pair in
+        // contact continues is released at its place of the merged order. A pair's history
+        // o.hist is the index of the old entry with its key (-1: none; the narrow phase's
+        // lookup), so the old entries below it that are not yet passed are the released ones:
+        // the merge by keys without comparing them (both lists ascend; the entry of a pair of
+        // the places [p0, p1) lies in [ia, ia_end))
         for (int32_t p = p0; p < p1; ++p) {
             while (p >= next_span) {
                 ++sp;
@@ -1638,10 +1644,15 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             const int32_t pr = in_contact[k];
             const NodeId j = key_node[pr];
             const BodyId c = key_body[pr];
-            while (ia < ia_end && pair_below(act[ia], j, c))
-                release(act[ia++], part, dissipated);
-            if (ia < ia_end && act[ia].node == j && act[ia].body == c) ++ia;
             const PairResult& o = out[k];
+            if (o.hist >= 0) {
+                const size_t h = static_cast<size_t>(o.hist);
+                FDEM_ASSERT(h >= ia && h < ia_end && act[h].node == j && act[h].body == c,
+                            "a pair's history is not the old entry of its key in its range");
+                while (ia < h)
+                    release(act[ia++], part, dissipated);
+                ia = h + 1;
+            }
             if constexpr (decltype(with_forces)::value)
                 add_pair_forces(ct, f, fc, j, o);  // f on the target, -N_i f on the contactor
             const Real ratio = o.h.depth_ratio;
@@ -1667,6 +1678,14 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     // (a distributed run: the bookkeeping of its own pairs here, their forces with the other
     // processes' records in apply_records())
     const bool local = share != nullptr;
+    // the lists of apply_to, for T threads: T^2 segments of a count and at most a slice's pairs
+    // (T (n_next + 2 T) entries at most; grows only)
+    const auto seg_len = [n_next](int nt) { return static_cast<size_t>(n_next / nt) + 2; };
+    if (par_apply && !local) {
+        const size_t mt = static_cast<size_t>(max_threads);
+        const size_t need = mt * (static_cast<size_t>(n_next) + 2 * mt);
+        if (cs.apply_to.size() < need) cs.apply_to.resize(need);
+    }
     if (!par_apply) {
         parts[0] = ContactApplyPart{};
         if (local) {
@@ -1687,12 +1706,36 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             const int32_t p0 = slice(t), p1 = slice(t + 1);
             bookkeeping(p0, p1, t == 0 ? 0 : old_from(p0), old_from(p1), part, std::false_type{});
             if (!local) {
-#pragma omp barrier
-                // the forces, to this thread's real nodes only, in pair order
+                // thread u's range of real nodes starts at range_lo(u)
                 const int64_t nn = ct.num_real_nodes;
-                const NodeId lo = static_cast<NodeId>(nn * t / nt);
-                const NodeId hi = static_cast<NodeId>(nn * (t + 1) / nt);
-                for_places(0, n_next, [&](int32_t, int32_t k) {
+                const auto range_lo = [nn, nt](int u) { return static_cast<NodeId>(nn * u / nt); };
+                // the range holding real node i (a scan of the starts for up to 64 threads)
+                constexpr int kScan = 64;
+                std::array<NodeId, kScan + 1> starts;
+                if (nt <= kScan) {
+                    for (int u = 0; u <= nt; ++u)
+                        starts[static_cast<size_t>(u)] = range_lo(u);
+                }
+                const auto range_of = [&](NodeId i) {
+                    int u = 0;
+                    if (nt <= kScan) {
+                        while (starts[static_cast<size_t>(u + 1)] <= i)
+                            ++u;
+                        return u;
+                    }
+                    u = static_cast<int>(static_cast<int64_t>(i) * nt / nn);
+                    while (u + 1 < nt && range_lo(u + 1) <= i)
+                        ++u;
+                    while (u > 0 && range_lo(u) > i)
+                        --u;
+                    return u;
+                };
+                // this slice's pairs listed by the ranges their spans meet, in place order
+                const size_t len = seg_len(nt);
+                int32_t* const to = cs.apply_to.data() + static_cast<size_t>(t) * nt * len;
+                for (int u = 0; u < nt; ++u)
+                    to[static_cast<size_t>(u) * len] = 0;
+                for_places(p0, p1, [&](int32_t, int32_t k) {
                     const int32_t pr = in_contact[k];
                     const NodeId j = key_node[pr];
                     NodeId a, b;
@@ -1702,13 +1745,33 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                             FDEM_ASSERT(i >= a && i <= b, "a pair's force reaches beyond its span");
                         });
                     }
-                    if (b < lo || a >= hi) return;
-                    if (a >= lo && b < hi) {
-                        add_pair_forces(ct, f, fc, j, out[k]);
-                    } else {
-                        add_pair_forces(ct, f, fc, j, out[k], lo, hi);
+                    const int ua = range_of(a), ub = range_of(b);
+                    // k: the whole span in one range (no per-node check); ~k: checked
+                    const int32_t e = ua == ub ? k : ~k;
+                    for (int u = ua; u <= ub; ++u) {
+                        int32_t* seg = to + static_cast<size_t>(u) * len;
+                        seg[1 + seg[0]++] = e;
                     }
                 });
+#pragma omp barrier
+                // the forces, to this thread's real nodes only, in pair order (the lists of
+                // threads 0 .. T - 1 for this range, each in place order)
+                const NodeId lo = range_lo(t);
+                const NodeId hi = static_cast<NodeId>(nn * (t + 1) / nt);
+                for (int r = 0; r < nt; ++r) {
+                    const int32_t* seg =
+                        cs.apply_to.data() + (static_cast<size_t>(r) * nt + t) * len;
+                    const int32_t cnt = seg[0];
+                    for (int32_t q = 1; q <= cnt; ++q) {
+                        const int32_t e = seg[q];
+                        if (e >= 0) {
+                            add_pair_forces(ct, f, fc, key_node[in_contact[e]], out[e]);
+                        } else {
+                            const int32_t k = ~e;
+                            add_pair_forces(ct, f, fc, key_node[in_contact[k]], out[k], lo, hi);
+                        }
+                    }
+                }
             }
         }
     }

@@ -325,7 +325,9 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // f_contact and sets fc_sparse false, not saved)
     // 1056 -> 1080: ContactState::xa (contactor positions by contact id for the locate loop;
     // filled every step by update_virtual_nodes(), scratch, not saved)
-    EXPECT_EQ(sizeof(ContactState), 1080u) << "ContactState changed: update io/checkpoint.cpp";
+    // 1080 -> 1104: ContactState::apply_to (the threads' lists of the pairs whose forces reach
+    // each thread's node range in the apply; per-step scratch, not saved)
+    EXPECT_EQ(sizeof(ContactState), 1104u) << "ContactState changed: update io/checkpoint.cpp";
     // 1048 -> 1072: State::scratch_load (the load forces of the current step, rewritten at the
     // start of every step from x^n; not saved)
     // 1072 -> 1096: State::bc_reaction (the supports' reactions of the last step, rewritten by
@@ -352,7 +354,8 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // 4704 -> 4752: ContactState 976 -> 1024 above
     // 4752 -> 4784: ContactState 1024 -> 1056 above
     // 4784 -> 4808: ContactState 1056 -> 1080 above
-    EXPECT_EQ(sizeof(State), 4808u) << "State changed: update io/checkpoint.cpp";
+    // 4808 -> 4832: ContactState 1080 -> 1104 above
+    EXPECT_EQ(sizeof(State), 4832u) << "State changed: update io/checkpoint.cpp";
 }
 
 // Loads (theory §4.1): the half of the load work that belongs after t^n travels in
