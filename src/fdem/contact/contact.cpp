@@ -33,7 +33,10 @@ namespace fdem {
 
 namespace {
 
-constexpr Real kLocateEps = 1e-12;     // N_i >= -eps counts as inside (spec §4.5-1)
+constexpr Real kLocateEps = 1e-12;  // N_i >= -eps counts as inside (spec §4.5-1)
+// a pair's last sub-triangle is taken without testing the other candidates when every N_i of
+// x_j there exceeds this (evaluate_pair(): temporal coherence)
+constexpr Real kCoherentMin = 1e-6;
 constexpr Real kLostCheckRatio = 0.1;  // depth ratio above which a lost pair is tested
 // early reject of the locate test: c_i < -kRejectMargin |2A| means N_i < -1e-9, far beyond
 // -kLocateEps plus the rounding of N_i (~1e-15), and far below any geometric distance
@@ -855,8 +858,9 @@ Real extended_field(const Model& m, const ContactTopology& ct, const Vec2* xc, c
         if (d_last == d_last) out.h.d0 += fs.d - d_last;
         if (out.h.d0 > fs.d) out.h.d0 = fs.d;
     }
-    // (read by eqs. 9.27-9.28 of contactors with fracture only; -1 for the others)
-    if (frac) out.h.sub = best - ct.body_sub_begin[static_cast<size_t>(c)];
+    // (read by eqs. 9.27-9.28 of contactors with fracture, and as the first guess of
+    // evaluate_pair()'s locate loop for the others)
+    out.h.sub = best - ct.body_sub_begin[static_cast<size_t>(c)];
     const Real d_law = fs.d - out.h.d0;  // (= d exactly where d0 = 0)
     const LawResult r =
         contact_law(p, d_law, fs.grad, vc - target_point(ct, v, j), scale, dt, out.h);
@@ -895,8 +899,10 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
     Real bN[3], binv = 0;
     Vec2 pb[3];
     const Vec2* xa = cs.xa.data();  // (= cpos(ct, xc, xv, i) at contact id i)
-    for (int32_t k = cs.cand.begin[pr]; k < cs.cand.begin[pr + 1]; ++k) {
-        const auto& q = ct.sub_tri[cs.cand.tri[k]];
+    const int32_t k0 = cs.cand.begin[pr], k1 = cs.cand.begin[pr + 1];
+    // the test of candidate sub-triangle t (the larger min N_i wins, ties to the later one)
+    const auto test = [&](int32_t t) __attribute__((always_inline)) {
+        const auto& q = ct.sub_tri[t];
         const Vec2 p[3] = {xa[q[0]], xa[q[1]], xa[q[2]]};
         // N_i = c_i * (1 / a2) with |rounding| < 1e-15 relative, so any c_i beyond
         // kRejectMargin |a2| on the outer side gives N_i < -kLocateEps: rejected either way
@@ -905,14 +911,14 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
         const Real c0 = cross(p[1] - xj, p[2] - xj), c1 = cross(p[2] - xj, p[0] - xj),
                    c2 = cross(p[0] - xj, p[1] - xj);
         const Real lim = kRejectMargin * std::abs(a2);
-        if (a2 > 0 ? std::min({c0, c1, c2}) < -lim : std::max({c0, c1, c2}) > lim) continue;
+        if (a2 > 0 ? std::min({c0, c1, c2}) < -lim : std::max({c0, c1, c2}) > lim) return;
         Real N[3];
         Real inv;
-        if (!barycentric(p[0], p[1], p[2], xj, N, inv)) continue;
+        if (!barycentric(p[0], p[1], p[2], xj, N, inv)) return;
         const Real mn = std::min({N[0], N[1], N[2]});
         if (mn >= best_min) {
             best_min = mn;
-            best = cs.cand.tri[k];
+            best = t;
             binv = inv;
             bN[0] = N[0];
             bN[1] = N[1];
@@ -921,6 +927,50 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
             pb[1] = p[1];
             pb[2] = p[2];
         }
+    };
+    // temporal coherence (issue #16): a pair with history tests its last sub-triangle first.
+    // If that one is a candidate and holds x_j with every N_i > kCoherentMin, the full test
+    // would pick it too: the sub-triangles of a body without fracture do not overlap, so x_j
+    // lies outside every other one, by a margin that rounding cannot close (their min N_i is
+    // below 0 by about the same share of their height), so none reaches min N_i >= kCoherentMin;
+    // best, N and the vertices are those the loop computes for it. Otherwise the full test.
+    // (Contactors with fracture: their crack faces' sub-triangles overlap, coherent_locate()
+    // applies eq. 9.28 after the plain rule.)
+    bool located = false;
+    if (cursor != nullptr) {
+        const BodyId c = cs.cand.body[pr];
+        if (ct.body_self.empty() || ct.body_self[static_cast<size_t>(c)] == 0) {
+            const ActiveContact* h = find_pair_from(cs.active, *cursor, j, c);
+            const int32_t sb = ct.body_sub_begin[static_cast<size_t>(c)];
+            if (h != nullptr && h->h.sub >= 0 &&
+                h->h.sub < ct.body_sub_begin[static_cast<size_t>(c) + 1] - sb) {
+                const int32_t last = sb + h->h.sub;
+                bool listed = false;
+                for (int32_t k = k0; k < k1; ++k)
+                    listed |= cs.cand.tri[k] == last;
+                if (listed) {
+                    test(last);
+                    located = best >= 0 && best_min > kCoherentMin;
+                    if (!located) {
+                        best = -1;
+                        best_min = -kLocateEps;
+                    }
+                }
+            }
+        }
+    }
+    if (!located) {
+        for (int32_t k = k0; k < k1; ++k)
+            test(cs.cand.tri[k]);
+    } else if constexpr (kAssertsEnabled) {
+        // (assert builds: the full test picks the same sub-triangle)
+        [[maybe_unused]] const int32_t kept = best;
+        best = -1;
+        best_min = -kLocateEps;
+        for (int32_t k = k0; k < k1; ++k)
+            test(cs.cand.tri[k]);
+        FDEM_ASSERT(best == kept,
+                    "temporal coherence kept a sub-triangle the full test does not pick");
     }
     if (best < 0) return -1;
     return contact_at(m, ct, cs, xc, xv, v, vv, dt, j, xj, cs.cand.body[pr], pr, best, bN, pb, binv,
