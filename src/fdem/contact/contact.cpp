@@ -787,7 +787,7 @@ Real extended_field(const Model& m, const ContactTopology& ct, const Vec2* xc, c
                                                  Real dt, NodeId j, Vec2 xj, BodyId c, int32_t pr,
                                                  int32_t best, const Real N_in[3],
                                                  const Vec2 pb_in[3], Real inv, PairResult& out,
-                                                 size_t* cursor) {
+                                                 bool hist_known, const ActiveContact* hist_in) {
     const ContactModel& cm = m.contact;
     const BodyId bt = m.node_body[target_node(ct, j)];
     // a contactor with fracture: the history first, for the locate rule of a pair with history
@@ -799,10 +799,10 @@ Real extended_field(const Model& m, const ContactTopology& ct, const Vec2* xc, c
     Vec2 pf[3];
     const Real* N = N_in;
     const Vec2* pb = pb_in;
-    // the history: from the chunk's cursor where the caller has one (ascending pairs)
-    const auto history = [&] {
-        return cursor != nullptr ? find_pair_from(cs.active, *cursor, j, c)
-                                 : find_pair(cs.active, j, c);
+    // the history: the caller's lookup where it made one (evaluate_pair() with a chunk's
+    // cursor, before the locate loop), else a search of the whole list
+    const auto history = [&]() __attribute__((always_inline))->const ActiveContact* {
+        return hist_known ? hist_in : find_pair(cs.active, j, c);
     };
     if (frac) {
         hist = history();
@@ -939,11 +939,15 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
     // best, N and the vertices are those the loop computes for it. Otherwise the full test.
     // (Contactors with fracture: their crack faces' sub-triangles overlap, coherent_locate()
     // applies eq. 9.28 after the plain rule.)
+    // (the history looked up here is handed to contact_at())
     bool located = false;
+    bool hist_known = false;
+    const ActiveContact* h = nullptr;
     if (cursor != nullptr) {
         const BodyId c = cs.cand.body[pr];
+        h = find_pair_from(cs.active, *cursor, j, c);
+        hist_known = true;
         if (ct.body_self.empty() || ct.body_self[static_cast<size_t>(c)] == 0) {
-            const ActiveContact* h = find_pair_from(cs.active, *cursor, j, c);
             const int32_t sb = ct.body_sub_begin[static_cast<size_t>(c)];
             if (h != nullptr && h->h.sub >= 0 &&
                 h->h.sub < ct.body_sub_begin[static_cast<size_t>(c) + 1] - sb) {
@@ -977,7 +981,7 @@ int32_t evaluate_pair(const Model& m, const ContactTopology& ct, const ContactSt
     }
     if (best < 0) return -1;
     return contact_at(m, ct, cs, xc, xv, v, vv, dt, j, xj, cs.cand.body[pr], pr, best, bN, pb, binv,
-                      out, cursor);
+                      out, hist_known, h);
 }
 
 // Theory eq. 9.26: before a rebuild of the bodies `dirty`, the law depth d - d0 (and the
