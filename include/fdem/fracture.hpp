@@ -101,6 +101,10 @@ struct Joints {
 /// Mutable part: per-joint history (state side) and the kernel's scratch.
 struct JointState {
     std::vector<std::array<Real, 3>> d_max;  ///< frozen damage per point (spec §3.8)
+    /// z(D_max) per point (theory eq. 9.10) where D_max > 0: a cache of a pure function of d_max,
+    /// recomputed only where D_max rises (theory §9.4); not saved, rebuilt from d_max by
+    /// refresh_softening_cache() after a restore
+    std::vector<std::array<Real, 3>> z_max;
     std::vector<JointStatus> status;
     std::vector<uint8_t> mode_bits;  ///< 1: a point reached D_n >= 1, 2: D_s >= 1, 4: neither alone
     std::vector<JointMode> mode;     ///< mode at breaking (None while not broken)

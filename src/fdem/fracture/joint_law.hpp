@@ -55,8 +55,13 @@ struct JointPoint {
 
 /// The law at one point of a joint of current length h (theory eqs. 9.4-9.10): opening o, slip s;
 /// dmax (frozen irreversibility, spec §3.8) is raised to the current D. The intact elastic case
-/// (dmax = 0, o <= o_p, |s| <= s_p) takes no exp/pow/sqrt.
-inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Real s, Real& dmax) {
+/// (dmax = 0, o <= o_p, |s| <= s_p) takes no exp/pow/sqrt. zmax caches z(dmax): it must hold
+/// softening_z(L.curve, dmax) where dmax > 0 on entry (any value where dmax = 0) and does so on
+/// return; z (an exp and a pow, ~15 % of a fracturing run's step when evaluated at every point of
+/// every damaged joint on every step) is evaluated only where dmax rises. The same bits as
+/// evaluating z(max(dmax, D)) every time: the same function of the same value.
+inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Real s, Real& dmax,
+                              Real& zmax) {
     JointPoint r;
     // eq. 9.5, compressive branch, and eq. 9.7: f_s from the current sigma_c = p o/h
     Real sigma_c = 0;
@@ -81,9 +86,13 @@ inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Rea
             r.Ds = std::max(Real(0), (abs_s - sp) / softening_range(L, r.fs, L.GII, sp));
         }
         const Real D = std::min(Real(1), std::sqrt(r.Dn * r.Dn + r.Ds * r.Ds));
-        dmax = std::max(dmax, D);
+        // dmax = max(dmax, D) (equal or NaN D: dmax unchanged, as std::max keeps its first)
+        if (dmax < D) {
+            dmax = D;
+            zmax = softening_z(L.curve, D);
+        }
     }
-    r.z = dmax > 0 ? softening_z(L.curve, dmax) : 1.0;
+    r.z = dmax > 0 ? zmax : 1.0;
     // eq. 9.5: compression penalty, parabolic hardening, softening plateau scaled by z(D_max)
     if (o < 0) {
         r.sigma = sigma_c;
@@ -96,6 +105,12 @@ inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Rea
     const Real mag = eta <= 1.0 ? r.fs * r.z * (eta * (2.0 - eta)) : r.fs * r.z;
     r.tau = std::copysign(mag, s);
     return r;
+}
+
+/// The same without a cache (tests, reference): z(dmax) evaluated here.
+inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Real s, Real& dmax) {
+    Real zmax = dmax > 0 ? softening_z(L.curve, dmax) : 1.0;
+    return joint_point(L, h, inv_h, o, s, dmax, zmax);
 }
 
 /// Intact point in its elastic range: the same arithmetic as joint_point with dmax = 0 (same

@@ -12,6 +12,7 @@
 #include <limits>
 #include <string>
 
+#include "fdem/assert.hpp"
 #include "fdem/error.hpp"
 
 namespace fdem {
@@ -50,10 +51,21 @@ void finalize_joints(Joints& J, int32_t num_nodes) {
                 4 * j + k;
 }
 
+void refresh_softening_cache(const Joints& J, JointState& s) {
+    const size_t n = s.d_max.size();
+    s.z_max.resize(n);
+    for (size_t j = 0; j < n; ++j) {
+        const SofteningCurve curve = J.laws[static_cast<size_t>(J.law[j])].curve;
+        for (int k = 0; k < 3; ++k)
+            s.z_max[j][k] = s.d_max[j][k] > 0 ? softening_z(curve, s.d_max[j][k]) : 1.0;
+    }
+}
+
 JointState make_joint_state(const Joints& J) {
     const size_t n = static_cast<size_t>(J.num_joints());
     JointState s;
     s.d_max.assign(n, {0, 0, 0});
+    s.z_max.assign(n, {1, 1, 1});
     s.status.assign(n, JointStatus::Intact);
     s.mode_bits.assign(n, 0);
     s.mode.assign(n, JointMode::None);
@@ -103,6 +115,7 @@ template <bool kEnergy>
     const Real ob = dot(n, db), sb = dot(e, db);
     const JointLaw& L = J.laws[static_cast<size_t>(J.law[j])];
     auto& dmax = s.d_max[j];
+    auto& zmax = s.z_max[j];  // z(dmax), kept by joint_point()
     JointPoint pa, pm, pb;
     bool elastic = false;
     if (s.status[j] == JointStatus::Intact) {
@@ -112,9 +125,14 @@ template <bool kEnergy>
                             joint_point_intact(L, inv_h, ob, sb, pb)}) <= 1.0;
     }
     if (!elastic) {
-        pa = joint_point(L, h, inv_h, oa, sa, dmax[0]);
-        pm = joint_point(L, h, inv_h, om, sm, dmax[1]);
-        pb = joint_point(L, h, inv_h, ob, sb, dmax[2]);
+        if constexpr (kAssertsEnabled) {
+            for (int k = 0; k < 3; ++k)
+                FDEM_ASSERT(!(dmax[k] > 0) || zmax[k] == softening_z(L.curve, dmax[k]),
+                            "the cached z(D_max) of a joint point is not z of its D_max");
+        }
+        pa = joint_point(L, h, inv_h, oa, sa, dmax[0], zmax[0]);
+        pm = joint_point(L, h, inv_h, om, sm, dmax[1], zmax[1]);
+        pb = joint_point(L, h, inv_h, ob, sb, dmax[2], zmax[2]);
     }
     bool broken = false;
     if (!elastic && (dmax[0] > 0 || dmax[1] > 0 || dmax[2] > 0)) {

@@ -17,6 +17,10 @@ void finalize_joints(Joints& J, int32_t num_nodes);
 /// State of the joints in the reference configuration (separations 0, no force, no damage).
 JointState make_joint_state(const Joints& J);
 
+/// JointState::z_max from d_max (after anything that sets d_max other than the kernel: a
+/// checkpoint restore).
+void refresh_softening_cache(const Joints& J, JointState& s);
+
 /// Result of one kernel call.
 struct JointPass {
     Real elastic_energy = 0;  ///< E_joint = sum w_k (psi_n + psi_s) (eq. 9.18), when need_energy

@@ -12,6 +12,7 @@
 #include "fdem/error.hpp"
 #include "fdem/simulate.hpp"
 #include "fdem/version.hpp"
+#include "fracture/joints.hpp"
 #include "integrate/fracture_update.hpp"
 #include "io/atomic_file.hpp"
 
@@ -615,6 +616,7 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
             if (static_cast<uint8_t>(js.status[j]) > 2 || static_cast<uint8_t>(js.mode[j]) > 3)
                 r.fail("a joint status or mode is out of range (corrupt file)");
         }
+        refresh_softening_cache(m.joints, js);  // z(D_max), not saved
         rebuild_fracture_views(m, s);  // sectors, fragments, topology of the saved cracks
     }
 

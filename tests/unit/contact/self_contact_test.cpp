@@ -12,6 +12,7 @@
 
 #include "contact/contact.hpp"
 #include "fdem/simulate.hpp"
+#include "fracture/joints.hpp"
 #include "fracture/sectors.hpp"
 #include "io/checkpoint.hpp"
 #include "support/jointed.hpp"
@@ -271,6 +272,7 @@ TEST(SelfContact, ContactBornAtABreakStoresNoEnergy) {
     // break it in the next step: frozen damage 1 at its three points (spec §3.9)
     s.joints.status[static_cast<size_t>(last)] = JointStatus::Softening;
     s.joints.d_max[static_cast<size_t>(last)] = {1.0, 1.0, 1.0};
+    refresh_softening_cache(m.joints, s.joints);  // (z(D_max) of the set damage)
     const int64_t break_step = s.step;
     step(m, s);
     ASSERT_EQ(s.joints.status[static_cast<size_t>(last)], JointStatus::Broken);

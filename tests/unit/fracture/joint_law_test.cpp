@@ -64,6 +64,52 @@ TEST(JointLaw, EvansMaratheShape) {
     EXPECT_DOUBLE_EQ(softening_z(SofteningCurve::Linear, 0.25), 0.75);
 }
 
+// theory §9.4: the cached z(D_max) of joint_point(..., dmax, zmax) gives the bits of evaluating
+// z(max(D_max, D)) at every call (the reference, written out here from softening_z), along
+// seeded random paths that load past the peak, unload into compression, reload and break, in
+// both modes and mixed, for both softening curves. A cache that missed a rise of D_max (or was
+// refreshed where it did not rise) would carry a z of another D_max and change sigma and tau.
+TEST(JointLaw, CachedSofteningIsTheSameBitsAsEvaluatingItEveryTime) {
+    for (const SofteningCurve curve : {SofteningCurve::EvansMarathe, SofteningCurve::Linear}) {
+        JointMaterial m = granite();
+        m.softening = curve;
+        const JointLaw L = make_joint_law(m);
+        const double h = 0.01, op = 2 * h * 1e6 / 1e10, sp = 2 * h * 2e6 / 2e10;
+        std::mt19937_64 rng(7);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        int rises = 0, frozen = 0;
+        for (int path = 0; path < 50; ++path) {
+            double dmax = 0, zmax = 1.0;  // cached
+            double dref = 0;              // reference
+            double o = 0, s = 0;
+            for (int step = 0; step < 400; ++step) {
+                // a random walk biased to open: o_p and s_p per ~20 steps, unloading on the way
+                o += op * (0.08 * u(rng) + 0.03);
+                s += sp * (0.08 * u(rng) + (path % 3 == 0 ? 0.0 : 0.02));
+                const double d_before = dmax;
+                const JointPoint c = joint_point(L, h, 1.0 / h, o, s, dmax, zmax);
+                // reference: the law's damage, then z of the raised D_max, every call
+                JointPoint r = c;
+                const double D = std::min(1.0, std::sqrt(c.Dn * c.Dn + c.Ds * c.Ds));
+                dref = std::max(dref, D);
+                const double zr = dref > 0 ? softening_z(curve, dref) : 1.0;
+                ASSERT_EQ(std::memcmp(&dmax, &dref, sizeof dref), 0) << path << " " << step;
+                ASSERT_EQ(std::memcmp(&c.z, &zr, sizeof zr), 0) << path << " " << step;
+                // and the uncached form from the state before the call: the same tractions
+                double d2 = d_before;
+                r = joint_point(L, h, 1.0 / h, o, s, d2);
+                ASSERT_EQ(std::memcmp(&c.sigma, &r.sigma, sizeof r.sigma), 0) << path << " " << step;
+                ASSERT_EQ(std::memcmp(&c.tau, &r.tau, sizeof r.tau), 0) << path << " " << step;
+                rises += dmax > d_before ? 1 : 0;
+                frozen += dmax > 0 && dmax == d_before ? 1 : 0;
+            }
+        }
+        // the paths exercise both: rises of D_max and calls at a frozen D_max > 0
+        EXPECT_GT(rises, 1000);
+        EXPECT_GT(frozen, 1000);
+    }
+}
+
 // U3: tractions at a point equal spec eqs. 3.2, 3.4, 3.5 (to 1e-12 relative)
 TEST(JointLaw, TractionsMatchSpecFormulas) {
     const JointMaterial m = granite();

@@ -250,6 +250,19 @@ TEST(FractureStep, RestartThroughABreakIsBitwise) {
         State b = make_state(m, dt);
         RunProgress q;
         read_checkpoint(p, m, b, q);
+        // the cached z(D_max) of every damaged point (theory §9.4, not saved) is rebuilt from
+        // the saved D_max: z of it, eq. 9.10
+        int damaged = 0;
+        for (size_t j = 0; j < b.joints.d_max.size(); ++j) {
+            const SofteningCurve curve = m.joints.laws[static_cast<size_t>(m.joints.law[j])].curve;
+            for (int k = 0; k < 3; ++k) {
+                const Real d = b.joints.d_max[j][k];
+                if (!(d > 0)) continue;
+                ++damaged;
+                EXPECT_EQ(b.joints.z_max[j][k], softening_z(curve, d)) << p << " " << j;
+            }
+        }
+        EXPECT_GT(damaged, 0) << p;
         if (p == p2) {
             EXPECT_EQ(broken(b), kNy);
             EXPECT_EQ(b.tri_fragment, a.tri_fragment);
