@@ -617,7 +617,7 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
                 r.fail("a joint status or mode is out of range (corrupt file)");
         }
         refresh_softening_cache(m.joints, js);  // z(D_max), not saved
-        rebuild_fracture_views(m, s);  // sectors, fragments, topology of the saved cracks
+        rebuild_fracture_views(m, s);           // sectors, fragments, topology of the saved cracks
     }
 
     ContactState& c = s.contact;

@@ -98,7 +98,8 @@ TEST(JointLaw, CachedSofteningIsTheSameBitsAsEvaluatingItEveryTime) {
                 // and the uncached form from the state before the call: the same tractions
                 double d2 = d_before;
                 r = joint_point(L, h, 1.0 / h, o, s, d2);
-                ASSERT_EQ(std::memcmp(&c.sigma, &r.sigma, sizeof r.sigma), 0) << path << " " << step;
+                ASSERT_EQ(std::memcmp(&c.sigma, &r.sigma, sizeof r.sigma), 0)
+                    << path << " " << step;
                 ASSERT_EQ(std::memcmp(&c.tau, &r.tau, sizeof r.tau), 0) << path << " " << step;
                 rises += dmax > d_before ? 1 : 0;
                 frozen += dmax > 0 && dmax == d_before ? 1 : 0;
