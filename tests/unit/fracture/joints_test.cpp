@@ -507,6 +507,107 @@ TEST(Joints, BlockedPathSameBits) {
     }
 }
 
+// theory §9.4: blocks with softening joints (block_law_softening: every softening joint at a
+// frozen D_max, every intact one elastic) give the bits of the scalar path: a quarter of the
+// square is loaded past the peak, then unloaded and reloaded below the largest opening it saw
+// (damage frozen, with a small jitter that sometimes raises it), with the energy on some steps;
+// the softening blocks run for a good part of the joint-steps (counted against the portable path
+// without them), and everything the kernel writes is the same.
+TEST(Joints, SofteningBlocksSameBits) {
+    const MeshData mesh = make_rectangle_mesh(0, 0, 32 * kH, 32 * kH, 32, 32, true);
+    const SplitMesh sm = split_mesh(mesh.nodes, mesh.tris);
+    Joints J;
+    J.laws.push_back(make_joint_law(material()));
+    J.laws.push_back(make_joint_law(material(SofteningLength::Total)));
+    add_edge_joints(J, sm.x0, sm.tris, sm.vertex, 0);
+    for (int32_t j = 0; j < J.num_joints(); j += 53)
+        J.law[static_cast<size_t>(j)] = 1;  // a block with two laws goes scalar
+    const int32_t nn = static_cast<int32_t>(sm.x0.size());
+    finalize_joints(J, nn);
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> U(-1, 1);
+    std::vector<Vec2> mode(static_cast<size_t>(nn));
+    for (auto& m : mode)
+        m = {U(rng), U(rng)};
+    const double amp = 2 * kH * kFt / kP;  // o_p
+    struct Run {
+        std::vector<Vec2> f;
+        JointState s;
+        std::vector<Real> sums;
+        int64_t blocked = 0;
+    };
+    auto run = [&](detail::JointPath path, int threads) {
+        Run r;
+        const int saved = omp_get_max_threads();
+        omp_set_num_threads(threads);
+        detail::set_joint_path(path);
+        r.s = make_joint_state(J);
+        std::vector<Vec2> x = sm.x0;
+        std::mt19937_64 jr(3);
+        for (int n = 1; n <= 60; ++n) {
+            // to 1.2 o_p-scaled mode amplitude by step 12 (past the peak of many joints), then
+            // cycles between 0.3 and 1.1 of it
+            const double a = n <= 12 ? 0.1 * n : 0.7 + 0.4 * std::sin(0.7 * (n - 12));
+            for (NodeId i = 0; i < nn; ++i) {
+                const Vec2 x0 = sm.x0[static_cast<size_t>(i)];
+                const double ai = x0.x < 16 * kH && x0.y < 16 * kH ? a : std::min(a, 0.15);
+                x[static_cast<size_t>(i)] = x0 + (amp * ai) * mode[static_cast<size_t>(i)] +
+                                            (0.01 * amp) * Vec2{U(jr), U(jr)};
+            }
+            r.f.assign(static_cast<size_t>(nn), Vec2{0.25, -0.5});
+            const JointPass p = joint_forces(J, r.s, x, r.f, n % 4 == 0, n);
+            r.sums.insert(r.sums.end(),
+                          {p.elastic_energy, p.work, p.fracture, static_cast<Real>(p.newly_broken),
+                           static_cast<Real>(p.softening)});
+            r.f.insert(r.f.end(), r.f.begin(), r.f.begin() + nn);
+            r.blocked += p.blocked;
+        }
+        detail::set_joint_path(detail::JointPath::Auto);
+        omp_set_num_threads(saved);
+        return r;
+    };
+    const auto same = [](const auto& a, const auto& b) {
+        return a.size() == b.size() &&
+               std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+    };
+    const Run ref = run(detail::JointPath::Scalar, 1);
+    int softening = 0;
+    for (auto st : ref.s.status)
+        softening += st == JointStatus::Softening;
+    std::printf("[ joints ] %d, softening %d\n", J.num_joints(), softening);
+    EXPECT_GT(softening, J.num_joints() / 20) << "the load must soften a good share";
+    const Run intact_only = run(detail::JointPath::PortableIntactOnly, 1);
+    std::vector<detail::JointPath> paths = {detail::JointPath::PortableIntactOnly,
+                                            detail::JointPath::Portable};
+    if (detail::joint_avx512_supported()) paths.push_back(detail::JointPath::Avx512);
+    for (const auto path : paths) {
+        for (const int threads : {1, 2}) {
+            const Run o = run(path, threads);
+            SCOPED_TRACE(testing::Message()
+                         << "path " << static_cast<int>(path) << ", threads " << threads);
+            if (path != detail::JointPath::PortableIntactOnly) {
+                // softening blocks: over 20 softening joints' worth of steps each
+                EXPECT_GT(o.blocked - intact_only.blocked, int64_t{20} * 60);
+                std::printf("[ joints ] path %d: %lld joint-steps in softening blocks\n",
+                            static_cast<int>(path),
+                            static_cast<long long>(o.blocked - intact_only.blocked));
+            }
+            EXPECT_TRUE(same(ref.f, o.f));
+            EXPECT_TRUE(same(ref.sums, o.sums));
+            EXPECT_TRUE(same(ref.s.d_max, o.s.d_max));
+            EXPECT_TRUE(same(ref.s.z_max, o.s.z_max));
+            EXPECT_TRUE(same(ref.s.work, o.s.work));
+            EXPECT_TRUE(same(ref.s.f_prev, o.s.f_prev));
+            EXPECT_TRUE(same(ref.s.d_prev, o.s.d_prev));
+            EXPECT_TRUE(same(ref.s.status, o.s.status));
+            EXPECT_TRUE(same(ref.s.mode_bits, o.s.mode_bits));
+            EXPECT_TRUE(same(ref.s.mode, o.s.mode));
+            EXPECT_TRUE(same(ref.s.break_step, o.s.break_step));
+            EXPECT_EQ(std::memcmp(&ref.s.total_work, &o.s.total_work, sizeof(Real)), 0);
+        }
+    }
+}
+
 // spec §5: the Gershgorin bound of eq. 5.1 bounds omega_max^2 of M^-1 K measured by power
 // iteration with the kernel's own forces (small displacements about the reference state)
 TEST(Joints, StableTimeStepBound) {
