@@ -217,9 +217,8 @@ struct Block {
 // joint_point_energy for an intact point (z = 1) lane-wise, both branches evaluated and one
 // selected (same expressions, same bits).
 [[gnu::always_inline]] inline Real intact_energy_lane(const JointLaw& L, Real h, Real o, Real s,
-                                                      Real fs, Real z = 1.0) {
-    // (z = 1 for an intact point: 1 * a = a, the bits of the intact expressions; a softening
-    // point of a frozen block passes its z(D_max): joint_point_energy's expressions)
+                                                      Real fs) {
+    const Real z = 1.0;
     const Real psi_c = 0.5 * L.p * o * o / h;
     const Real op = 2.0 * h * L.ft / L.p;
     const Real xi = o / op;
@@ -247,33 +246,6 @@ struct Block {
     m = std::max(xi, eta);
 }
 
-// The law of a softening point whose damage does not rise in this call, lane-wise: joint_point's
-// expressions (same bits) with dmax, zmax = z(dmax) frozen; frozen = false where D would exceed
-// dmax (the caller then takes the scalar path, which raises it).
-[[gnu::always_inline]] inline void frozen_lane(const JointLaw& L, Real h, Real inv_h, Real o,
-                                               Real s, Real dmax, Real zmax, Real& sigma,
-                                               Real& tau, Real& fs, Real& z, bool& frozen) {
-    const bool comp = o < 0;
-    const Real sigma_c = comp ? L.p * o * inv_h : 0.0;  // eq. 9.5
-    fs = comp ? L.c - sigma_c * L.tan_phi : L.c;        // eq. 9.7
-    const Real inv_sp = (L.half_ps * inv_h) / fs;       // eq. 9.4
-    const Real xi = o * L.half_p_over_ft * inv_h;
-    const Real abs_s = std::fabs(s);
-    const Real eta = abs_s * inv_sp;
-    // eq. 9.9 where a limit is exceeded (as joint_point: each mode only beyond its own)
-    const Real op = 2.0 * h * L.ft / L.p;
-    const Real Dn = xi > 1.0 ? std::max(Real(0), (o - op) / softening_range(L, L.ft, L.GI, op)) : 0;
-    const Real sp = 2.0 * h * fs / L.ps;
-    const Real Ds =
-        eta > 1.0 ? std::max(Real(0), (abs_s - sp) / softening_range(L, fs, L.GII, sp)) : 0;
-    const Real D = std::min(Real(1), std::sqrt(Dn * Dn + Ds * Ds));
-    frozen = !(xi > 1.0 || eta > 1.0) || !(dmax < D);
-    z = dmax > 0 ? zmax : 1.0;
-    sigma = comp ? sigma_c : (xi <= 1.0 ? L.ft * z * (xi * (2.0 - xi)) : L.ft * z);  // eq. 9.5
-    const Real mag = eta <= 1.0 ? fs * z * (eta * (2.0 - eta)) : fs * z;           // eq. 9.8
-    tau = std::copysign(mag, s);
-}
-
 // The law of joints j0 .. j0 + 7, all intact: true when all are of one law (its index in law).
 [[gnu::always_inline]] inline bool block_qualifies(const Joints& J, const JointState& s, int32_t j0,
                                                    int32_t& law) {
@@ -290,11 +262,6 @@ struct BlockPositions {
     alignas(64) Real y[4][kLanes];
     alignas(64) Real fp[4][kLanes];  ///< last forces f0x, f0y, f1x, f1y (eq. 9.17)
     alignas(64) Real dp[4][kLanes];  ///< last separations dax, day, dbx, dby (eq. 9.17)
-    // (kSoft blocks) per point k (0 = a, 1 = middle, 2 = b): D_max and z(D_max); soft: the lane
-    // is a softening joint (1) or an intact one (0)
-    alignas(64) Real dm[3][kLanes];
-    alignas(64) Real zm[3][kLanes];
-    alignas(64) Real soft[kLanes];
 };
 
 [[gnu::always_inline]] inline void gather_positions(const Joints& J, const Vec2* __restrict x,
@@ -320,7 +287,7 @@ struct BlockPositions {
 // and B filled when all are long enough and elastic at their three points (then B holds what
 // one_joint would compute); false otherwise. Writes nothing else: the caller stores the eq. 9.17
 // state (f_prev, d_prev) of a qualified block.
-template <bool kEnergy, bool kSoft = false>
+template <bool kEnergy>
 [[gnu::always_inline]] inline bool block_core(const Joints& J, const JointLaw& L,
                                               const BlockPositions& P, int32_t j0, Block& B) {
     const Real* x0x = P.x[0];
@@ -359,27 +326,7 @@ template <bool kEnergy, bool kSoft = false>
         // std::max({ma, mm, mb}) <= 1 as one_joint (first largest, operator<)
         Real mx = ma < mm ? mm : ma;
         mx = mx < mb ? mb : mx;
-        [[maybe_unused]] Real za = 1.0, zm = 1.0, zb = 1.0;
-        if constexpr (kSoft) {
-            // a softening lane: joint_point at its frozen D_max (one_joint's general law, which
-            // a softening joint takes); the lane qualifies where no point's damage rises and no
-            // point has failed (D_max >= 1: the breaking rule and the mode bits of one_joint)
-            Real s_ga, t_aa, f_sa, s_gm, t_am, f_sm, s_gb, t_ab, f_sb;
-            bool fa, fm, fb;
-            frozen_lane(L, h, inv_h, oa, sa, P.dm[0][l], P.zm[0][l], s_ga, t_aa, f_sa, za, fa);
-            frozen_lane(L, h, inv_h, om, sm, P.dm[1][l], P.zm[1][l], s_gm, t_am, f_sm, zm, fm);
-            frozen_lane(L, h, inv_h, ob, sb, P.dm[2][l], P.zm[2][l], s_gb, t_ab, f_sb, zb, fb);
-            const bool soft = P.soft[l] != 0;
-            const bool soft_ok = fa & fm & fb & (P.dm[0][l] < 1.0) & (P.dm[1][l] < 1.0) &
-                                 (P.dm[2][l] < 1.0);
-            good[l] = (lane_ok & (soft ? soft_ok : (mx <= 1.0))) ? 1.0 : 0.0;
-            sga = soft ? s_ga : sga, taa = soft ? t_aa : taa, fsa = soft ? f_sa : fsa;
-            sgm = soft ? s_gm : sgm, tam = soft ? t_am : tam, fsm = soft ? f_sm : fsm;
-            sgb = soft ? s_gb : sgb, tab = soft ? t_ab : tab, fsb = soft ? f_sb : fsb;
-            za = soft ? za : 1.0, zm = soft ? zm : 1.0, zb = soft ? zb : 1.0;
-        } else {
-            good[l] = (lane_ok & (mx <= 1.0)) ? 1.0 : 0.0;
-        }
+        good[l] = (lane_ok & (mx <= 1.0)) ? 1.0 : 0.0;
         // eq. 9.3
         const Real tax = sga * nx + taa * ex, tay = sga * ny + taa * ey;
         const Real tmx = sgm * nx + tam * ex, tmy = sgm * ny + tam * ey;
@@ -398,9 +345,9 @@ template <bool kEnergy, bool kSoft = false>
         if constexpr (kEnergy) {
             // eq. 9.18 (as one_joint: w = h/6, weights 1, 4, 1)
             const Real w = h / 6.0;
-            B.en[l] = w * (intact_energy_lane(L, h, oa, sa, fsa, za) +
-                           4.0 * intact_energy_lane(L, h, om, sm, fsm, zm) +
-                           intact_energy_lane(L, h, ob, sb, fsb, zb));
+            B.en[l] = w * (intact_energy_lane(L, h, oa, sa, fsa) +
+                           4.0 * intact_energy_lane(L, h, om, sm, fsm) +
+                           intact_energy_lane(L, h, ob, sb, fsb));
         }
     }
     Real all = 1.0;
@@ -427,39 +374,6 @@ bool block_law_portable(const Joints& J, JointState& s, const Vec2* __restrict x
     load_block_state(s, j0, P);
     if (!block_core<kEnergy>(J, J.laws[static_cast<size_t>(law)], P, j0, B)) return false;
     store_block_state(s, j0, B);
-    return true;
-}
-
-// Joints j0 .. j0 + 7 of one law, each intact or softening, at least one softening: true and B
-// filled (the bits of one_joint) when every intact one is elastic and every softening one keeps
-// its D_max (< 1) at all three points in this call; n_soft = the softening ones. Portable loops
-// on every CPU (the blocks of a damaged zone, where most points unload or reload below their
-// D_max: theory §9.4).
-template <bool kEnergy>
-bool block_law_softening(const Joints& J, JointState& s, const Vec2* __restrict x, int32_t j0,
-                         Block& B, int32_t& n_soft) {
-    const int32_t law = J.law[j0];
-    bool ok = true;
-    int32_t soft = 0;
-    for (int l = 0; l < kLanes; ++l) {
-        const JointStatus st = s.status[j0 + l];
-        ok &= (st != JointStatus::Broken) & (J.law[j0 + l] == law);
-        soft += st == JointStatus::Softening ? 1 : 0;
-    }
-    if (!ok || soft == 0) return false;
-    BlockPositions P;
-    gather_positions(J, x, j0, P);
-    load_block_state(s, j0, P);
-    for (int l = 0; l < kLanes; ++l) {
-        const auto& d = s.d_max[j0 + l];
-        const auto& z = s.z_max[j0 + l];
-        for (int k = 0; k < 3; ++k)
-            P.dm[k][l] = d[k], P.zm[k][l] = z[k];
-        P.soft[l] = s.status[j0 + l] == JointStatus::Softening ? 1.0 : 0.0;
-    }
-    if (!block_core<kEnergy, true>(J, J.laws[static_cast<size_t>(law)], P, j0, B)) return false;
-    store_block_state(s, j0, B);
-    n_soft = soft;
     return true;
 }
 
@@ -538,19 +452,12 @@ using BlockFn = bool (*)(const Joints&, JointState&, const Vec2* __restrict, int
 
 // set by choose_path (at load) or detail::set_joint_path; [kEnergy]
 BlockFn g_block[2] = {nullptr, nullptr};
-// the blocks with softening joints (block_law_softening) on every blocked path
-bool g_soft_blocks = true;
 
 void choose_path(detail::JointPath p) {
-    g_soft_blocks = true;
     switch (p) {
         case detail::JointPath::Scalar:
             g_block[0] = g_block[1] = nullptr;
             break;
-        case detail::JointPath::PortableIntactOnly:
-            choose_path(detail::JointPath::Portable);
-            g_soft_blocks = false;
-            return;
         case detail::JointPath::Portable:
             g_block[0] = &block_law_portable<false>;
             g_block[1] = &block_law_portable<true>;
@@ -629,15 +536,9 @@ void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
     if (const BlockFn block = g_block[kEnergy ? 1 : 0]) {
         Block B;
         for (; j + kLanes <= end; j += kLanes) {
-            int32_t n_soft = 0;
             if (block(J, s, x, j, B)) {
                 commit_block<kEnergy, kScatter>(J, s, f, j, B, out);
                 out.blocked += kLanes;
-            } else if (g_soft_blocks && block_law_softening<kEnergy>(J, s, x, j, B, n_soft)) {
-                // (one_joint counts a softening joint that stays so)
-                commit_block<kEnergy, kScatter>(J, s, f, j, B, out);
-                out.blocked += kLanes;
-                out.softening += n_soft;
             } else {
                 for (int l = 0; l < kLanes; ++l)
                     scalar(j + l);

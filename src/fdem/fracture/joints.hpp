@@ -47,10 +47,7 @@ namespace detail {
 /// Which code computes blocks of 8 intact elastic joints in joint_forces (same bits on every
 /// path): Auto (the default) picks Avx512 when the CPU has AVX-512F, else Portable; Scalar turns
 /// the blocked path off. For tests and benchmarks; not thread-safe against a running kernel.
-/// Scalar: joint by joint; Portable / Avx512: blocks of 8 intact elastic joints, and blocks with
-/// softening joints at a frozen D_max (portable loops on every CPU); PortableIntactOnly: the
-/// portable blocks of intact joints only (tests, benchmarks: the path before the softening blocks).
-enum class JointPath { Auto, Scalar, Portable, Avx512, PortableIntactOnly };
+enum class JointPath { Auto, Scalar, Portable, Avx512 };
 void set_joint_path(JointPath p);
 /// true when this build has the AVX-512 variant and the CPU runs it.
 bool joint_avx512_supported();
