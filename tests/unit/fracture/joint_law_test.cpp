@@ -89,7 +89,6 @@ TEST(JointLaw, CachedSofteningIsTheSameBitsAsEvaluatingItEveryTime) {
                 const double d_before = dmax;
                 const JointPoint c = joint_point(L, h, 1.0 / h, o, s, dmax, zmax);
                 // reference: the law's damage, then z of the raised D_max, every call
-                JointPoint r = c;
                 const double D = std::min(1.0, std::sqrt(c.Dn * c.Dn + c.Ds * c.Ds));
                 dref = std::max(dref, D);
                 const double zr = dref > 0 ? softening_z(curve, dref) : 1.0;
@@ -97,7 +96,7 @@ TEST(JointLaw, CachedSofteningIsTheSameBitsAsEvaluatingItEveryTime) {
                 ASSERT_EQ(std::memcmp(&c.z, &zr, sizeof zr), 0) << path << " " << step;
                 // and the uncached form from the state before the call: the same tractions
                 double d2 = d_before;
-                r = joint_point(L, h, 1.0 / h, o, s, d2);
+                const JointPoint r = joint_point(L, h, 1.0 / h, o, s, d2);
                 ASSERT_EQ(std::memcmp(&c.sigma, &r.sigma, sizeof r.sigma), 0)
                     << path << " " << step;
                 ASSERT_EQ(std::memcmp(&c.tau, &r.tau, sizeof r.tau), 0) << path << " " << step;
