@@ -31,6 +31,23 @@ enum class SofteningLength : uint8_t {
 /// D_max <- max(D_max, D) and the tractions use z(D_max).
 enum class Irreversibility : uint8_t { Frozen };
 
+/// How a softening point shares its strength between the two modes (theory §9.3b).
+enum class MixedMode : uint8_t {
+    /// spec §3 (default; Y, Y-Geo, Solidity): each traction is capped by its own strength times
+    /// z(D_max), sigma <= f_t z, |tau| <= f_s z, whatever the mix of the separation (eqs. 9.5, 9.8)
+    Independent,
+    /// each mode's traction is scaled by that mode's share of the damage reached, D_n,max/K and
+    /// D_s,max/K (K = |(D_n,max, D_s,max)|), blended in over the first kMixOnset of K (theory eq.
+    /// 9.30): pure modes as Independent, a radial separation dissipates
+    /// (G_I u^2 + G_II v^2)/(u^2 + v^2), u = f_t cos(theta)/G_I, v = f_s sin(theta)/G_II (eq. 9.31)
+    Proportional,
+};
+
+/// Width in K = |(D_n,max, D_s,max)| over which MixedMode::Proportional's shares are blended in
+/// from 1 (theory eq. 9.30): the shares are undefined at K = 0, so the tractions would jump at the
+/// onset of damage without it.
+inline constexpr Real kMixOnset = 0.05;
+
 /// Joint parameters of one material (spec §3.1, §10). Units: Pa, rad, J/m^2.
 struct JointMaterial {
     Real tensile_strength = 0;    ///< f_t > 0
@@ -43,6 +60,7 @@ struct JointMaterial {
     SofteningCurve softening = SofteningCurve::EvansMarathe;
     SofteningLength softening_length = SofteningLength::Exact;
     Irreversibility irreversibility = Irreversibility::Frozen;
+    MixedMode mixed_mode = MixedMode::Independent;
     int32_t failure_points = 2;  ///< 1..3 integration points with D >= 1 break the joint
     /// Accept joints longer than h_max (theory eq. 9.14), whose softening branch is shorter than
     /// 2 o_p; false: finalize_model() rejects them (InputError naming the longest joint)
@@ -70,6 +88,7 @@ struct JointLaw {
     Real half_ps = 0;                 ///< p_s/2: 1/s_p = (p_s/2)/(h f_s) (eq. 9.4)
     SofteningCurve curve = SofteningCurve::EvansMarathe;
     SofteningLength length_rule = SofteningLength::Exact;
+    MixedMode mixed = MixedMode::Independent;
     int32_t failure_points = 2;
 };
 
@@ -105,6 +124,10 @@ struct JointState {
     /// recomputed only where D_max rises (theory §9.4); not saved, rebuilt from d_max by
     /// refresh_softening_cache() after a restore
     std::vector<std::array<Real, 3>> z_max;
+    /// largest D_n and D_s reached per point (eq. 9.9, not clamped), the history of
+    /// MixedMode::Proportional's shares (theory eq. 9.30); empty unless a law of the model has
+    /// that rule (make_joint_state)
+    std::vector<std::array<Real, 3>> dn_max, ds_max;
     std::vector<JointStatus> status;
     std::vector<uint8_t> mode_bits;  ///< 1: a point reached D_n >= 1, 2: D_s >= 1, 4: neither alone
     std::vector<JointMode> mode;     ///< mode at breaking (None while not broken)

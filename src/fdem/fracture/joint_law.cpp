@@ -58,6 +58,7 @@ JointLaw make_joint_law(const JointMaterial& jm) {
     L.half_ps = 0.5 * L.ps;
     L.curve = jm.softening;
     L.length_rule = jm.softening_length;
+    L.mixed = jm.mixed_mode;
     L.failure_points = jm.failure_points;
     return L;
 }

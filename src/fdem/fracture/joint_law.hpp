@@ -51,7 +51,21 @@ struct JointPoint {
     Real Ds = 0;     ///< shear damage <|s| - s_p>/(s_r - s_p) (eq. 9.9), not clamped
     Real z = 1;      ///< z(D_max) used for the tractions
     Real fs = 0;     ///< shear strength f_s (eq. 9.7)
+    Real a_n = 1;    ///< share of the tensile traction (eq. 9.30; 1 with MixedMode::Independent)
+    Real a_s = 1;    ///< share of the shear traction (eq. 9.30; 1 with MixedMode::Independent)
 };
+
+/// Shares a_n, a_s of MixedMode::Proportional from the largest damage of each mode reached at a
+/// point (theory eq. 9.30): with K = sqrt(dn^2 + ds^2) and w = min(1, K/kMixOnset),
+/// a_n = 1 - w (1 - dn/K), a_s = 1 - w (1 - ds/K); both 1 at K = 0. A pure mode keeps its own
+/// share at exactly 1 (sqrt(dn^2) = dn), so its traction has the bits of MixedMode::Independent.
+inline void mixed_mode_shares(Real dn, Real ds, JointPoint& r) {
+    const Real K = std::sqrt(dn * dn + ds * ds);
+    if (!(K > 0)) return;  // no damage yet (or below sqrt of the smallest double): shares 1
+    const Real w = std::min(Real(1), K / kMixOnset);
+    r.a_n = 1.0 - w * (1.0 - dn / K);
+    r.a_s = 1.0 - w * (1.0 - ds / K);
+}
 
 /// The law at one point of a joint of current length h (theory eqs. 9.4-9.10): opening o, slip s;
 /// dmax (frozen irreversibility, spec §3.8) is raised to the current D. The intact elastic case
@@ -60,8 +74,11 @@ struct JointPoint {
 /// return; z (an exp and a pow, ~15 % of a fracturing run's step when evaluated at every point of
 /// every damaged joint on every step) is evaluated only where dmax rises. The same bits as
 /// evaluating z(max(dmax, D)) every time: the same function of the same value.
+/// dn_max, ds_max (MixedMode::Proportional only; null otherwise): the point's largest D_n and
+/// D_s so far, raised to the current ones, from which the shares a_n, a_s scale the tensile and
+/// shear tractions (theory eq. 9.30; the compressive penalty is never scaled).
 inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Real s, Real& dmax,
-                              Real& zmax) {
+                              Real& zmax, Real* dn_max = nullptr, Real* ds_max = nullptr) {
     JointPoint r;
     // eq. 9.5, compressive branch, and eq. 9.7: f_s from the current sigma_c = p o/h
     Real sigma_c = 0;
@@ -91,26 +108,33 @@ inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Rea
             dmax = D;
             zmax = softening_z(L.curve, D);
         }
+        if (dn_max != nullptr) {  // eq. 9.30: each mode's largest damage (NaN: unchanged)
+            if (*dn_max < r.Dn) *dn_max = r.Dn;
+            if (*ds_max < r.Ds) *ds_max = r.Ds;
+        }
     }
     r.z = dmax > 0 ? zmax : 1.0;
+    if (dn_max != nullptr) mixed_mode_shares(*dn_max, *ds_max, r);
     // eq. 9.5: compression penalty, parabolic hardening, softening plateau scaled by z(D_max)
+    // (and by the tensile share a_n of eq. 9.30: 1 unless MixedMode::Proportional)
     if (o < 0) {
         r.sigma = sigma_c;
     } else if (xi <= 1.0) {
-        r.sigma = L.ft * r.z * (xi * (2.0 - xi));
+        r.sigma = L.ft * r.z * (xi * (2.0 - xi)) * r.a_n;
     } else {
-        r.sigma = L.ft * r.z;
+        r.sigma = L.ft * r.z * r.a_n;
     }
-    // eq. 9.8
-    const Real mag = eta <= 1.0 ? r.fs * r.z * (eta * (2.0 - eta)) : r.fs * r.z;
+    // eq. 9.8 (times the shear share a_s of eq. 9.30)
+    const Real mag = eta <= 1.0 ? r.fs * r.z * (eta * (2.0 - eta)) * r.a_s : r.fs * r.z * r.a_s;
     r.tau = std::copysign(mag, s);
     return r;
 }
 
 /// The same without a cache (tests, reference): z(dmax) evaluated here.
-inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Real s, Real& dmax) {
+inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Real s, Real& dmax,
+                              Real* dn_max = nullptr, Real* ds_max = nullptr) {
     Real zmax = dmax > 0 ? softening_z(L.curve, dmax) : 1.0;
-    return joint_point(L, h, inv_h, o, s, dmax, zmax);
+    return joint_point(L, h, inv_h, o, s, dmax, zmax, dn_max, ds_max);
 }
 
 /// Intact point in its elastic range: the same arithmetic as joint_point with dmax = 0 (same
@@ -130,7 +154,8 @@ inline Real joint_point_intact(const JointLaw& L, Real inv_h, Real o, Real s, Jo
 }
 
 /// Stored (recoverable at fixed D_max) energy per unit length of a point (theory eq. 9.18):
-/// psi_n + psi_s from the same o, s, h and the point's z and f_s.
+/// psi_n + psi_s from the same o, s, h and the point's z, f_s and shares a_n, a_s (eq. 9.30: at
+/// a fixed history the shares are constants, so the law stays the derivative of this energy).
 inline Real joint_point_energy(const JointLaw& L, Real h, Real o, Real s, const JointPoint& r) {
     Real psi;
     if (o < 0) {
@@ -140,12 +165,13 @@ inline Real joint_point_energy(const JointLaw& L, Real h, Real o, Real s, const 
         const Real xi = o / op;
         psi = xi <= 1.0 ? r.z * L.ft * op * (xi * xi - xi * xi * xi / 3.0)
                         : r.z * L.ft * ((2.0 / 3.0) * op + (o - op));
+        psi *= r.a_n;
     }
     const Real sp = 2.0 * h * r.fs / L.ps;
     const Real abs_s = std::fabs(s);
     const Real eta = abs_s / sp;
-    psi += eta <= 1.0 ? r.z * r.fs * sp * (eta * eta - eta * eta * eta / 3.0)
-                      : r.z * r.fs * ((2.0 / 3.0) * sp + (abs_s - sp));
+    psi += r.a_s * (eta <= 1.0 ? r.z * r.fs * sp * (eta * eta - eta * eta * eta / 3.0)
+                               : r.z * r.fs * ((2.0 / 3.0) * sp + (abs_s - sp)));
     return psi;
 }
 

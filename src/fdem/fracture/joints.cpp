@@ -66,6 +66,14 @@ JointState make_joint_state(const Joints& J) {
     JointState s;
     s.d_max.assign(n, {0, 0, 0});
     s.z_max.assign(n, {1, 1, 1});
+    // the per-mode history of MixedMode::Proportional (theory eq. 9.30), only where a law has it
+    const bool proportional = std::any_of(J.laws.begin(), J.laws.end(), [](const JointLaw& L) {
+        return L.mixed == MixedMode::Proportional;
+    });
+    if (proportional) {
+        s.dn_max.assign(n, {0, 0, 0});
+        s.ds_max.assign(n, {0, 0, 0});
+    }
     s.status.assign(n, JointStatus::Intact);
     s.mode_bits.assign(n, 0);
     s.mode.assign(n, JointMode::None);
@@ -130,9 +138,18 @@ template <bool kEnergy>
                 FDEM_ASSERT(!(dmax[k] > 0) || zmax[k] == softening_z(L.curve, dmax[k]),
                             "the cached z(D_max) of a joint point is not z of its D_max");
         }
-        pa = joint_point(L, h, inv_h, oa, sa, dmax[0], zmax[0]);
-        pm = joint_point(L, h, inv_h, om, sm, dmax[1], zmax[1]);
-        pb = joint_point(L, h, inv_h, ob, sb, dmax[2], zmax[2]);
+        if (L.mixed == MixedMode::Proportional) {
+            // eq. 9.30: each mode's largest damage per point scales that mode's traction
+            auto& dn = s.dn_max[j];
+            auto& ds = s.ds_max[j];
+            pa = joint_point(L, h, inv_h, oa, sa, dmax[0], zmax[0], &dn[0], &ds[0]);
+            pm = joint_point(L, h, inv_h, om, sm, dmax[1], zmax[1], &dn[1], &ds[1]);
+            pb = joint_point(L, h, inv_h, ob, sb, dmax[2], zmax[2], &dn[2], &ds[2]);
+        } else {
+            pa = joint_point(L, h, inv_h, oa, sa, dmax[0], zmax[0]);
+            pm = joint_point(L, h, inv_h, om, sm, dmax[1], zmax[1]);
+            pb = joint_point(L, h, inv_h, ob, sb, dmax[2], zmax[2]);
+        }
     }
     bool broken = false;
     if (!elastic && (dmax[0] > 0 || dmax[1] > 0 || dmax[2] > 0)) {

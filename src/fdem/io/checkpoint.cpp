@@ -131,6 +131,8 @@ void put(Sink& o, const JointLaw& L) {
     put(o, L.curve);
     put(o, L.length_rule);
     put(o, L.failure_points);
+    // since format 12, only when not the default (the model hashes of older scenarios unchanged)
+    if (L.mixed != MixedMode::Independent) put(o, L.mixed);
 }
 
 template <class Sink>
@@ -186,6 +188,8 @@ void put_state(Sink& o, const State& s) {
     put(o, js.work);
     put(o, js.f_prev);
     put(o, js.d_prev);
+    put(o, js.dn_max);  // since format 12 (empty unless a law is MixedMode::Proportional)
+    put(o, js.ds_max);
     put(o, js.total_work);
     put(o, js.total_work_sum);  // since format 11, as energy_sums
     put(o, s.energy_sums.work_external);
@@ -607,6 +611,10 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
         r.get_sized(js.work, nj, "joints.work");
         r.get_sized(js.f_prev, nj, "joints.f_prev");
         r.get_sized(js.d_prev, nj, "joints.d_prev");
+        // sized by make_joint_state for this model: nj with a MixedMode::Proportional law, else 0
+        const size_t nm = js.dn_max.size();
+        r.get_sized(js.dn_max, nm, "joints.dn_max");
+        r.get_sized(js.ds_max, nm, "joints.ds_max");
         r.get(js.total_work);
         r.get(js.total_work_sum);
         r.get(s.energy_sums.work_external);

@@ -53,7 +53,7 @@ const std::vector<std::string> kMaterialFractureKeys = {
     "tensile_strength",   "cohesion",        "friction_angle", "fracture_energy_I",
     "fracture_energy_II", "penalty",         "shear_penalty",  "softening",
     "softening_length",   "irreversibility", "failure_points", "residual_friction",
-    "allow_coarse"};
+    "allow_coarse",       "mixed_mode"};
 
 /// Optional sub-table: nullptr when absent; error when the key holds something else.
 const toml::table* sub_table(const SourceText& src, const toml::table& root, const char* key) {
@@ -402,6 +402,10 @@ private:
                                irr));
         }
         j.irreversibility = Irreversibility::Frozen;
+        j.mixed_mode = f.choice("mixed_mode", std::string("independent"),
+                                {"independent", "proportional"}) == "proportional"
+                           ? MixedMode::Proportional
+                           : MixedMode::Independent;
         const Real points = f.real("failure_points", 2.0, "", {1.0, 3.0, false, false});
         if (points != std::floor(points)) {
             f.fail(*f.node("failure_points"), "failure_points",

@@ -89,6 +89,7 @@ TEST(FractureInput, ParametersAndDefaults) {
     EXPECT_EQ(j.irreversibility, Irreversibility::Frozen);
     EXPECT_EQ(j.failure_points, 2);
     EXPECT_FALSE(j.allow_coarse);
+    EXPECT_EQ(j.mixed_mode, MixedMode::Independent);
     EXPECT_EQ(sc.run.fracture.output_joints, JointOutput::Damaged);
     EXPECT_EQ(sc.run.fracture.fragments, FragmentOutput::Interval);
     EXPECT_TRUE(sc.warnings.empty());
@@ -105,6 +106,7 @@ TEST(FractureInput, EveryOptionalKey) {
                                   "failure_points = 3\n"
                                   "residual_friction = 0.0\n"
                                   "allow_coarse = true\n"
+                                  "mixed_mode = \"proportional\"\n"
                                   "\n[fracture]\n"
                                   "crack_contact = \"self\"\n"
                                   "contact_targets = \"copies\"\n"
@@ -117,6 +119,7 @@ TEST(FractureInput, EveryOptionalKey) {
     EXPECT_EQ(j.softening_length, SofteningLength::YGeo);
     EXPECT_EQ(j.failure_points, 3);
     EXPECT_TRUE(j.allow_coarse);
+    EXPECT_EQ(j.mixed_mode, MixedMode::Proportional);
     EXPECT_EQ(sc.run.fracture.output_joints, JointOutput::All);
     EXPECT_EQ(sc.run.fracture.fragments, FragmentOutput::End);
     for (const auto& [rule, want] : {std::pair{"solidity", SofteningLength::Solidity},
@@ -349,6 +352,12 @@ INSTANTIATE_TEST_SUITE_P(
         Case{kLast, "fracture_energy_II = 250.0\nsoftening_length = \"3G/f\"",
              "bad.toml:17:20: error: material \"rock\" [material.fracture]: softening_length must "
              "be one of \"exact\", \"total\", \"y-geo\", \"solidity\", got \"3G/f\""},
+        Case{kLast, "fracture_energy_II = 250.0\nmixed_mode = \"coupled\"",
+             "bad.toml:17:14: error: material \"rock\" [material.fracture]: mixed_mode must be "
+             "one of \"independent\", \"proportional\", got \"coupled\""},
+        Case{kLast, "fracture_energy_II = 250.0\nmixed_mode = 1",
+             "bad.toml:17:14: error: material \"rock\" [material.fracture]: mixed_mode must be "
+             "one of \"independent\", \"proportional\", got a number 1"},
         Case{kLast, "fracture_energy_II = 250.0\nallow_coarse = \"yes\"",
              "bad.toml:17:16: error: material \"rock\" [material.fracture]: allow_coarse must be "
              "true or false, got a string \"yes\""},

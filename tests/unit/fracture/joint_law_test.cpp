@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 
@@ -247,6 +249,148 @@ TEST(JointLaw, MixedModeWorkOfARadialPath) {
             EXPECT_GE(dmax, 1.0);                     // broken at the end of the path
         }
     }
+}
+
+// The same radial paths with MixedMode::Proportional (theory eqs. 9.30, 9.31): each mode's
+// softened traction is scaled by its share r_n = D_n/K, r_s = D_s/K of the damage (constant along
+// a radial path), blended in as w = min(1, K/kMixOnset). With K = D = delta/delta_c on the path,
+//   W = delta_c [ I_z (f_t cos r_n + f_s sin r_s) + J_w (f_t cos (1 - r_n) + f_s sin (1 - r_s)) ],
+//   J_w = integral over [0, kMixOnset] of (1 - D/kMixOnset) z(D) dD (Simpson here),
+// whose first term is eq. 9.31, (G_I u^2 + G_II v^2)/(u^2 + v^2), u = f_t cos/G_I,
+// v = f_s sin/G_II. Pure modes give G_I and G_II as the independent law does.
+TEST(JointLaw, ProportionalWorkOfARadialPath) {
+    struct Case {
+        Real ft, c, GI, GII;
+    };
+    const int nq = 1 << 12;  // Simpson panels for J_w
+    Real Jw = 0;
+    for (int i = 0; i <= nq; ++i) {
+        const Real D = kMixOnset * i / nq;
+        const Real wq = (i == 0 || i == nq) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+        Jw += wq * (1.0 - D / kMixOnset) * softening_z(SofteningCurve::EvansMarathe, D);
+    }
+    Jw *= kMixOnset / nq / 3.0;
+    for (const Case k : {Case{1.0e7, 3.0e7, 25.0, 125.0}, Case{1.0e7, 1.0e7, 25.0, 25.0}}) {
+        JointMaterial m;
+        m.tensile_strength = k.ft;
+        m.cohesion = k.c;
+        m.friction_angle = 30.0 * M_PI / 180.0;
+        m.fracture_energy_I = k.GI;
+        m.fracture_energy_II = k.GII;
+        m.penalty = 1.0e15;
+        m.shear_penalty = 1.0e15;
+        m.mixed_mode = MixedMode::Proportional;
+        const JointLaw L = make_joint_law(m);
+        const Real h = 1e-3;
+        for (const Real deg : {0.0, 5.0, 10.0, 20.0, 30.0, 60.0, 90.0}) {
+            const Real ca = std::cos(deg * M_PI / 180.0), sa = std::sin(deg * M_PI / 180.0);
+            const Real dO = k.GI / (L.Iz * k.ft), dS = k.GII / (L.Iz * k.c);
+            const Real delta_c = 1.0 / std::hypot(ca / dO, sa / dS);
+            const Real rn = delta_c * ca / dO, rs = delta_c * sa / dS;
+            const Real u = k.ft * ca / k.GI, v = k.c * sa / k.GII;
+            const Real share = (k.GI * u * u + k.GII * v * v) / (u * u + v * v);  // eq. 9.31
+            EXPECT_NEAR(delta_c * L.Iz * (k.ft * ca * rn + k.c * sa * rs) / share, 1.0, 1e-12);
+            const Real expected =
+                share + delta_c * Jw * (k.ft * ca * (1.0 - rn) + k.c * sa * (1.0 - rs));
+            const int n = 200000;
+            const Real step = 1.02 * delta_c / n;
+            Real dmax = 0, dn = 0, ds = 0, work = 0, f_last = 0;
+            for (int i = 0; i <= n; ++i) {
+                const Real d = i * step;
+                const JointPoint r = joint_point(L, h, 1.0 / h, d * ca, d * sa, dmax, &dn, &ds);
+                const Real f = r.sigma * ca + r.tau * sa;  // traction along the path
+                if (i > 0) work += 0.5 * (f + f_last) * step;
+                f_last = f;
+            }
+            SCOPED_TRACE(testing::Message() << "G_II/G_I " << k.GII / k.GI << ", theta " << deg);
+            EXPECT_NEAR(work / expected, 1.0, 5e-5);
+            EXPECT_GE(dmax, 1.0);
+            // far below eq. 9.29's premium of the independent law on inclined paths
+            const Real premium = (k.ft * ca + k.c * sa) / std::hypot(k.ft * ca / k.GI,
+                                                                      k.c * sa / k.GII);
+            if (deg > 0 && deg < 90) EXPECT_LT(work, premium);
+            std::printf("[ radial ] G_II/G_I %.0f theta %4.1f: W/G_I %.5f (eq. 9.31 %.5f, "
+                        "independent eq. 9.29 %.5f)\n",
+                        k.GII / k.GI, deg, work / k.GI, share / k.GI, premium / k.GI);
+        }
+    }
+}
+
+// MixedMode::Proportional on a pure mode (s = 0, or o = 0) gives the bits of the independent law:
+// the share of the loaded mode is exactly 1 (sqrt(dn^2) = dn), the other mode's traction is 0.
+// Random loading, unloading and reloading paths of one point, both modes.
+TEST(JointLaw, ProportionalPureModesKeepTheIndependentBits) {
+    JointMaterial mi = granite();
+    JointMaterial mp = granite();
+    mp.mixed_mode = MixedMode::Proportional;
+    const JointLaw Li = make_joint_law(mi), Lp = make_joint_law(mp);
+    const Real h = 0.01;
+    const Real op = 2 * h * 1e6 / 1e10, sp = 2 * h * 2e6 / 2e10;
+    const auto bits = [](double v) {
+        uint64_t b;
+        std::memcpy(&b, &v, sizeof b);
+        return b;
+    };
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> U(0, 1);
+    for (int mode = 0; mode < 2; ++mode) {
+        for (int path = 0; path < 20; ++path) {
+            Real di = 0, dp = 0, dn = 0, ds = 0, amp = 0;
+            int damaged = 0;
+            for (int i = 0; i < 400; ++i) {
+                amp = std::max(amp, 0.0) + (U(rng) - 0.35) * 40 * (mode == 0 ? op : sp);
+                const Real a = std::max(amp, -0.5 * op);
+                const Real o = mode == 0 ? a : 0.0, s = mode == 0 ? 0.0 : (i % 2 ? a : -a);
+                const JointPoint ri = joint_point(Li, h, 1.0 / h, o, s, di);
+                const JointPoint rp = joint_point(Lp, h, 1.0 / h, o, s, dp, &dn, &ds);
+                ASSERT_EQ(bits(ri.sigma), bits(rp.sigma)) << mode << " " << i;
+                ASSERT_EQ(bits(ri.tau), bits(rp.tau)) << mode << " " << i;
+                ASSERT_EQ(bits(di), bits(dp));
+                ASSERT_EQ(bits(joint_point_energy(Li, h, o, s, ri)),
+                          bits(joint_point_energy(Lp, h, o, s, rp)));
+                damaged += dp > 0;
+            }
+            EXPECT_GT(damaged, 0);
+            EXPECT_EQ(mode == 0 ? ds : dn, 0.0);
+        }
+    }
+}
+
+// The shares are blended in from 1 (eq. 9.30), so the tractions are continuous through the onset
+// of damage on a mixed path: the largest change of either traction between neighbouring points of
+// a path through the onset halves when the spacing halves (a jump would not shrink). Without the
+// blend (w = 1 at once) the shear traction of this path would drop from 0.98 c to 0 in one step
+// when o crosses o_p.
+TEST(JointLaw, ProportionalIsContinuousThroughTheOnset) {
+    JointMaterial m = granite();
+    m.mixed_mode = MixedMode::Proportional;
+    const JointLaw L = make_joint_law(m);
+    const Real h = 0.01;
+    const Real op = 2 * h * 1e6 / 1e10, sp = 2 * h * 2e6 / 2e10;
+    const Real dO = 100.0 / (L.Iz * 1e6);
+    // slip held at 0.85 s_p (pre-peak shear), opening from 0.5 o_p to o_p + 0.2 dO: the onset of
+    // normal damage at o = o_p with the shear in its elastic branch, then D_n up to 0.2
+    auto largest_jump = [&](int n) {
+        Real dmax = 0, dn = 0, ds = 0, jump = 0, sig_last = 0, tau_last = 0;
+        for (int i = 0; i <= n; ++i) {
+            const Real o = 0.5 * op + (0.5 * op + 0.2 * dO) * i / n;
+            const JointPoint r = joint_point(L, h, 1.0 / h, o, 0.85 * sp, dmax, &dn, &ds);
+            if (i > 0)
+                jump = std::max({jump, std::fabs(r.sigma - sig_last) / 1e6,
+                                 std::fabs(r.tau - tau_last) / 2e6});
+            sig_last = r.sigma;
+            tau_last = r.tau;
+        }
+        EXPECT_GT(dn, 0.19);
+        EXPECT_EQ(ds, 0.0);
+        return jump;
+    };
+    const Real j1 = largest_jump(2000), j2 = largest_jump(4000), j3 = largest_jump(8000);
+    std::printf("[ onset ] largest traction change per step / strength: %.3e %.3e %.3e\n", j1, j2,
+                j3);
+    EXPECT_LT(j1, 0.05);
+    EXPECT_NEAR(j2 / j1, 0.5, 0.05);
+    EXPECT_NEAR(j3 / j2, 0.5, 0.05);
 }
 
 TEST(JointLaw, SofteningLengthRules) {

@@ -23,8 +23,10 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kH = 0.01, kFt = 1e6, kC = 2e6, kP = 1e10, kPs = 1e10, kGI = 100, kGII = 200;
 
-JointMaterial material(SofteningLength rule = SofteningLength::Exact) {
+JointMaterial material(SofteningLength rule = SofteningLength::Exact,
+                       MixedMode mixed = MixedMode::Independent) {
     JointMaterial m;
+    m.mixed_mode = mixed;
     m.tensile_strength = kFt;
     m.cohesion = kC;
     m.friction_angle = 30.0 * M_PI / 180.0;
@@ -241,6 +243,66 @@ TEST(Joints, IrreversibleUnloadReload) {
     EXPECT_GT(p1.fracture, 0.0);
 }
 
+// MixedMode::Proportional at a mixed point (theory eq. 9.30): loaded along a radial path into
+// softening, the stored energy is a_n psi_n + a_s psi_s with the shares of the damage reached
+// (eq. 9.18 times the shares, written out here); then a closed loop inside the envelope
+// (unloading, a different mixed path, reloading) leaves D_max, the per-mode maxima, the work and
+// W_frac where they were: at a fixed history the law is the derivative of that energy.
+TEST(Joints, ProportionalMixedPointStoresWhatItDoesNotDissipate) {
+    OneJoint j(material(SofteningLength::Exact, MixedMode::Proportional));
+    const double op = 2 * kH * kFt / kP, sp = 2 * kH * kC / kPs;  // eq. 9.4
+    const double Iz = softening_integral(SofteningCurve::EvansMarathe);
+    const double dO = kGI / (Iz * kFt), dS = kGII / (Iz * kC);   // eq. 9.12, exact
+    // end point: D_n = 0.24, D_s = 0.18 (D = 0.3), reached along a straight path from 0
+    const double o1 = op + 0.24 * dO, s1 = sp + 0.18 * dS;
+    const int n = 20000;
+    JointPass p1;
+    for (int k = 1; k <= n; ++k)
+        p1 = j.at(s1 * k / n, o1 * k / n, true);
+    EXPECT_EQ(j.s.status[0], JointStatus::Softening);
+    for (int q = 0; q < 3; ++q) {
+        EXPECT_NEAR(j.s.d_max[0][q], 0.3, 1e-12);
+        EXPECT_NEAR(j.s.dn_max[0][q], 0.24, 1e-12);
+        EXPECT_NEAR(j.s.ds_max[0][q], 0.18, 1e-12);
+    }
+    const double z = softening_z(SofteningCurve::EvansMarathe, 0.3);
+    const double an = 0.24 / 0.3, as = 0.18 / 0.3;  // K = 0.3 > kMixOnset: w = 1
+    EXPECT_NEAR(j.sigma(), an * z * kFt, 1e-9 * kFt);
+    EXPECT_NEAR(j.tau(), as * z * kC, 1e-9 * kC);
+    const double psi = an * z * kFt * (2.0 / 3.0 * op + (o1 - op)) +
+                       as * z * kC * (2.0 / 3.0 * sp + (s1 - sp));
+    EXPECT_NEAR(p1.elastic_energy, kH * psi, 1e-12 * kH * psi);
+    const double w1 = j.s.work[0];
+    EXPECT_GT(p1.fracture, 0.05 * w1);  // the softening dissipated
+    // the loop, straight legs between corners (o, s) in units of (o1, s1): back to 0.8 of the
+    // end point, across to a reversed slip and back, and up to the end point again. Every point
+    // has 0 <= o <= 0.8 o1 and |s| <= 0.8 s1 (so D < D_max) until the last leg retraces the
+    // first; o >= 0 throughout (in compression f_s depends on o, eq. 9.7: no potential there)
+    const double corners[][2] = {{1, 1},      {0.8, 0.8}, {0.1, 0.8}, {0.1, -0.6},
+                                 {0.7, 0.0},  {0.8, 0.8}, {1, 1}};
+    double sum_abs = 0;
+    JointPass p2;
+    const int m = 20000;  // points per leg
+    for (size_t c = 1; c < std::size(corners); ++c) {
+        for (int k = 1; k <= m; ++k) {
+            const double t = static_cast<double>(k) / m;
+            const double o = o1 * ((1 - t) * corners[c - 1][0] + t * corners[c][0]);
+            const double s = s1 * ((1 - t) * corners[c - 1][1] + t * corners[c][1]);
+            const double before = j.s.work[0];
+            p2 = j.at(s, o, true);
+            sum_abs += std::fabs(j.s.work[0] - before);
+        }
+    }
+    EXPECT_NEAR(j.s.d_max[0][0], 0.3, 1e-12);  // no new damage on the loop
+    EXPECT_NEAR(j.s.dn_max[0][0], 0.24, 1e-12);
+    EXPECT_NEAR(j.s.ds_max[0][0], 0.18, 1e-12);
+    // the loop's work vanishes to the trapezoid rule's error (the law is smooth on it)
+    EXPECT_NEAR(j.s.work[0], w1, 1e-6 * sum_abs);
+    EXPECT_NEAR(p2.fracture, p1.fracture, 1e-6 * sum_abs);
+    std::printf("[ loop ] W_frac %.6e -> %.6e J/m, loop |work| %.3e of %.3e summed\n",
+                p1.fracture, p2.fracture, std::fabs(j.s.work[0] - w1), sum_abs);
+}
+
 // spec §6: the work done by the driven nodes, summed with the same trapezoid rule from the
 // forces the kernel applies, equals E_joint + W_frac reported by the kernel, along a mixed,
 // non-monotonic path with damage and breaks, to a round-off bound
@@ -351,10 +413,12 @@ TEST(Joints, CollapsedJointThrows) {
 
 // U8: 1, 2, 3 threads give bitwise the same forces, state and sums (several chunks, breaks)
 TEST(Joints, ThreadCountBitwise) {
+  for (const MixedMode mixed : {MixedMode::Independent, MixedMode::Proportional}) {
+    SCOPED_TRACE(mixed == MixedMode::Proportional ? "proportional" : "independent");
     const MeshData mesh = make_rectangle_mesh(0, 0, 40 * kH, 40 * kH, 40, 40, true);
     const SplitMesh sm = split_mesh(mesh.nodes, mesh.tris);
     Joints J;
-    J.laws.push_back(make_joint_law(material()));
+    J.laws.push_back(make_joint_law(material(SofteningLength::Exact, mixed)));
     add_edge_joints(J, sm.x0, sm.tris, sm.vertex, 0);
     const int32_t nn = static_cast<int32_t>(sm.x0.size());
     finalize_joints(J, nn);
@@ -408,7 +472,13 @@ TEST(Joints, ThreadCountBitwise) {
         EXPECT_TRUE(same(s1.mode, o->mode));
         EXPECT_TRUE(same(s1.break_step, o->break_step));
         EXPECT_EQ(s1.total_work, o->total_work);
+        EXPECT_TRUE(same(s1.dn_max, o->dn_max));
+        EXPECT_TRUE(same(s1.ds_max, o->ds_max));
     }
+    // the per-mode history exists with the proportional law only (theory eq. 9.30)
+    EXPECT_EQ(s1.dn_max.size(),
+              mixed == MixedMode::Proportional ? static_cast<size_t>(J.num_joints()) : 0u);
+  }
 }
 
 // The blocked path (8 intact elastic joints at a time, portable and AVX-512) gives the bits of
