@@ -54,6 +54,9 @@ SEPARATED = 0.01  # a run that ends with P <= 1 % of P_max and a break within 2 
 # that then needed 0.1 % more to separate)
 
 
+PROPORTIONAL = ("mixed_mode", '"proportional"')  # theory §9.3b, eq. 9.30
+
+
 def sub1(pattern, repl, text, what):
     text, n = re.subn(pattern, repl, text)
     assert n == 1, f"{what} not found once ({n}), update run.py"
@@ -201,7 +204,7 @@ def main():
         a.sizes = a.sizes or "5"
         a.end_factor = 0.3 if a.end_factor == 1.0 else a.end_factor
     sizes = [float(s) for s in (a.sizes or ("5,10,20" if a.full else "10")).split(",")]
-    runs_spec = [(r, not a.unaligned, a.band, a.end_factor) for r in sizes]
+    runs_spec = [(r, not a.unaligned, a.band, a.end_factor, []) for r in sizes]
     if a.full and not a.sizes:
         # D/l_ch = 20 to just past the peak only (the tail would cost 8 x the default run), with
         # the fine band |x| <= D/8 instead of D/4 (half the triangles; the band is >= 2.5 l_ch
@@ -209,22 +212,27 @@ def main():
         # D/l_ch = 5 (aligned and unstructured) to delta ~ 13 delta_peak (end time x 3) and
         # D/l_ch = 10 to complete separation (end time x 6, ~25 delta_peak, ~28 min on one core):
         # the work-of-fracture checks
-        runs_spec = [(5.0, True, a.band, 3 * a.end_factor), (10.0, True, a.band, 6 * a.end_factor),
-                     (20.0, True, 0.125, 0.35 * a.end_factor), (5.0, False, a.band,
-                                                                3 * a.end_factor)]
+        # and the unstructured run again with mixed_mode = "proportional" (theory §9.3b: the
+        # spec's law makes the zigzag crack's inclined joints pay eq. 9.29's premium)
+        runs_spec = [(5.0, True, a.band, 3 * a.end_factor, []),
+                     (10.0, True, a.band, 6 * a.end_factor, []),
+                     (20.0, True, 0.125, 0.35 * a.end_factor, []),
+                     (5.0, False, a.band, 3 * a.end_factor, []),
+                     (5.0, False, a.band, 3 * a.end_factor, [PROPORTIONAL])]
     out = a.out or ("out/10_three_point_bending" + ("_full" if a.full else "") +
                     ("_quick" if a.quick else ""))
     os.makedirs(out, exist_ok=True)
 
     runs = []
-    for ratio, aligned, band, end_factor in runs_spec:
+    for ratio, aligned, band, end_factor, extra in runs_spec:
+        overrides = fracture + extra
         name = f"D_lch_{ratio:g}" + ("" if aligned else "_unaligned") + (
             f"_alg{a.mesh_algorithm}" if a.mesh_algorithm is not None else "") + "".join(
-            f"_{k}={v}" for k, v in fracture)
+            f"_{k}={v.strip(chr(34))}" for k, v in overrides)  # no quotes in a folder name
         d = os.path.join(out, name)
         os.makedirs(d, exist_ok=True)
         scen = make_run(d, ratio, a.h, aligned, a.contact, end_factor, band, a.mesh_algorithm,
-                        fracture)
+                        overrides)
         wall = None
         if not a.no_run:
             wall = labtest.run_fdem(a.fdem, scen, d, a.threads, what=name + ": ")
@@ -264,7 +272,9 @@ def main():
     import matplotlib.pyplot as plt
     fig, axs = plt.subplots(1, 2, figsize=(10, 4.2))
     for r in runs:
-        lab = f"D/l_ch = {r['ratio']:g}" + ("" if r["aligned"] else " unstructured")
+        lab = f"D/l_ch = {r['ratio']:g}" + ("" if r["aligned"] else " unstructured") + (
+            "" if r["rock"]["fracture"].get("mixed_mode", "independent") == "independent"
+            else ", " + r["rock"]["fracture"]["mixed_mode"])
         axs[0].plot([x * 1e6 for x in r["delta"]], [P / r["P_lefm"] for P in r["load"]], label=lab)
         axs[1].plot([x * 1e6 for x in r["cmod"]], [P / r["P_lefm"] for P in r["load"]], label=lab)
     for ax, xl in ((axs[0], "load-point displacement δ [µm]"), (axs[1], "CMOD [µm]")):
@@ -321,8 +331,10 @@ def main():
         print(f"  quasi-static: max KE/E_elastic before the peak {q['ke_ratio'] * 100:.3g} % "
               f"(peak row {q['ke_ratio_peak_row'] * 100:.3g} %); energy error {q['energy_error'] * 100:.3g} %"
               f"; KE at the end {r['last']['kinetic']:.3g} J/m")
+        mixed = r["rock"]["fracture"].get("mixed_mode", "independent")
         tag = (f"3PB D/l_ch = {r['ratio']:g}" + (", aligned" if r["aligned"] else ", unstructured")
-               + f", h = {a.h * 1e3:g} mm: ")
+               + f", h = {a.h * 1e3:g} mm" + ("" if mixed == "independent" else
+                                              f", mixed_mode = {mixed}") + ": ")
         rows_v.append(labtest.check("V6", tag + "P_max / P_LEFM", ratio_p, PMAX_BAND[0], "range",
                                     PMAX_BAND[1], "", why + ": [0.6, 1.0]"))
         # the jointed beam is softer than the rock (eq. 9.6: E_eff = E/(1 + 2E/p) on a structured

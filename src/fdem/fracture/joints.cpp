@@ -98,7 +98,9 @@ struct ChunkOut {
 // One joint: tractions at the three Simpson points, forces f0, f1 on nodes 0, 1 (eq. 9.3; nodes
 // 3, 2 get -f0, -f1), damage and status, the work increment (eq. 9.17) and, with kEnergy, the
 // stored energy (eq. 9.18). Returns false when the joint carries no force (broken, or bad).
-template <bool kEnergy>
+// kMixed: the model has a MixedMode::Proportional law (JointState::dn_max sized); without one the
+// code is that of the independent law alone.
+template <bool kEnergy, bool kMixed>
 [[gnu::always_inline]] inline bool one_joint(const Joints& J, JointState& s,
                                              const Vec2* __restrict x, int32_t j, int64_t step,
                                              Vec2& f0, Vec2& f1, ChunkOut& out) {
@@ -138,7 +140,7 @@ template <bool kEnergy>
                 FDEM_ASSERT(!(dmax[k] > 0) || zmax[k] == softening_z(L.curve, dmax[k]),
                             "the cached z(D_max) of a joint point is not z of its D_max");
         }
-        if (L.mixed == MixedMode::Proportional) {
+        if (kMixed && L.mixed == MixedMode::Proportional) {
             // eq. 9.30: each mode's largest damage per point scales that mode's traction
             auto& dn = s.dn_max[j];
             auto& ds = s.ds_max[j];
@@ -528,7 +530,7 @@ template <bool kEnergy, bool kScatter>
     }
 }
 
-template <bool kEnergy, bool kScatter>
+template <bool kEnergy, bool kScatter, bool kMixed>
 void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* __restrict f,
                int32_t c, int64_t step) {
     const int32_t begin = c * kJointChunk;
@@ -536,7 +538,7 @@ void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
     ChunkOut out;
     const auto scalar = [&](int32_t j) {
         Vec2 f0, f1;
-        const bool loaded = one_joint<kEnergy>(J, s, x, j, step, f0, f1, out);
+        const bool loaded = one_joint<kEnergy, kMixed>(J, s, x, j, step, f0, f1, out);
         if constexpr (kScatter) {
             if (loaded) {
                 const auto& nd = J.nodes[j];
@@ -576,10 +578,19 @@ void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
 template <bool kScatter>
 void run_chunk(const Joints& J, JointState& s, const Vec2* x, Vec2* f, int32_t c, int64_t step,
                bool energy) {
-    if (energy)
-        run_chunk<true, kScatter>(J, s, x, f, c, step);
-    else
-        run_chunk<false, kScatter>(J, s, x, f, c, step);
+    // a model with a MixedMode::Proportional law sizes the per-mode history (make_joint_state)
+    const bool mixed = !s.dn_max.empty();
+    if (energy) {
+        if (mixed)
+            run_chunk<true, kScatter, true>(J, s, x, f, c, step);
+        else
+            run_chunk<true, kScatter, false>(J, s, x, f, c, step);
+    } else {
+        if (mixed)
+            run_chunk<false, kScatter, true>(J, s, x, f, c, step);
+        else
+            run_chunk<false, kScatter, false>(J, s, x, f, c, step);
+    }
 }
 
 }  // namespace

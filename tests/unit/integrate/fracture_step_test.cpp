@@ -220,9 +220,14 @@ TEST(FractureStep, FullyJointedBarBalance) {
 
 // A checkpoint taken while the joints soften, restored, runs through the break bitwise like the
 // uninterrupted run (joint history saved; sectors, fragments, topology rebuilt on restore); one
-// taken after the break too. The model hash of a jointed model names the joints.
+// taken after the break too. The model hash of a jointed model names the joints. Both mixed-mode
+// rules: with "proportional" the per-mode damage history (theory eq. 9.30) is saved and restored.
 TEST(FractureStep, RestartThroughABreakIsBitwise) {
-    const Model m = pulled_bar(false);
+  for (const MixedMode mixed : {MixedMode::Independent, MixedMode::Proportional}) {
+    SCOPED_TRACE(mixed == MixedMode::Proportional ? "proportional" : "independent");
+    Model m = pulled_bar(false);
+    for (JointLaw& L : m.joints.laws)
+        L.mixed = mixed;
     const Real dt = 0.9 * stable_time_step(m);
     State ref = make_state(m, dt);
     auto broken = [](const State& s) {
@@ -237,11 +242,16 @@ TEST(FractureStep, RestartThroughABreakIsBitwise) {
     const std::string dir = ::testing::TempDir();
     const std::string p1 = dir + "/fracture_soft.fdck", p2 = dir + "/fracture_broken.fdck";
     write_checkpoint(p1, m, a, {});
+    const auto dn1 = a.joints.dn_max, ds1 = a.joints.ds_max;
+    if (mixed == MixedMode::Proportional)  // the restore below compares a history, not zeros
+        EXPECT_TRUE(std::any_of(dn1.begin(), dn1.end(), [](const auto& d) { return d[1] > 0; }));
+    EXPECT_EQ(dn1.size(), mixed == MixedMode::Proportional ? static_cast<size_t>(m.joints.num_joints()) : 0u);
     while (broken(a) == 0)
         step(m, a);
     for (int i = 0; i < 20; ++i)
         step(m, a);
     write_checkpoint(p2, m, a, {});
+    const auto dn2 = a.joints.dn_max, ds2 = a.joints.ds_max;
     const int64_t n_total = a.step + 300;
     while (ref.step < n_total)
         step(m, ref);
@@ -263,6 +273,8 @@ TEST(FractureStep, RestartThroughABreakIsBitwise) {
             }
         }
         EXPECT_GT(damaged, 0) << p;
+        EXPECT_EQ(b.joints.dn_max, p == p1 ? dn1 : dn2) << p;
+        EXPECT_EQ(b.joints.ds_max, p == p1 ? ds1 : ds2) << p;
         if (p == p2) {
             EXPECT_EQ(broken(b), kNy);
             EXPECT_EQ(b.tri_fragment, a.tri_fragment);
@@ -282,8 +294,13 @@ TEST(FractureStep, RestartThroughABreakIsBitwise) {
     Model other = m;
     other.joints.laws[0].GI *= 2;
     EXPECT_NE(model_hash(m, ref.topology, dt), model_hash(other, ref.topology, dt));
+    Model rule = m;
+    rule.joints.laws[0].mixed =
+        mixed == MixedMode::Proportional ? MixedMode::Independent : MixedMode::Proportional;
+    EXPECT_NE(model_hash(m, ref.topology, dt), model_hash(rule, ref.topology, dt));
     std::filesystem::remove(p1);
     std::filesystem::remove(p2);
+  }
 }
 
 }  // namespace

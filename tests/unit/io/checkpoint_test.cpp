@@ -357,7 +357,9 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // 4808 -> 4832: ContactState 1080 -> 1104 above
     // 4832 -> 4856: JointState::z_max, z(D_max) per joint point (theory §9.4): a cache of a
     // function of the saved d_max, not saved (the restore recomputes it)
-    EXPECT_EQ(sizeof(State), 4856u) << "State changed: update io/checkpoint.cpp";
+    // 4856 -> 4904: JointState::dn_max, ds_max, the per-mode damage history of
+    // mixed_mode = "proportional" (theory eq. 9.30), saved since format 12
+    EXPECT_EQ(sizeof(State), 4904u) << "State changed: update io/checkpoint.cpp";
 }
 
 // Loads (theory §4.1): the half of the load work that belongs after t^n travels in
