@@ -306,12 +306,13 @@ TEST(JointLaw, ProportionalWorkOfARadialPath) {
             EXPECT_NEAR(work / expected, 1.0, 5e-5);
             EXPECT_GE(dmax, 1.0);
             // far below eq. 9.29's premium of the independent law on inclined paths
-            const Real premium = (k.ft * ca + k.c * sa) / std::hypot(k.ft * ca / k.GI,
-                                                                      k.c * sa / k.GII);
+            const Real premium =
+                (k.ft * ca + k.c * sa) / std::hypot(k.ft * ca / k.GI, k.c * sa / k.GII);
             if (deg > 0 && deg < 90) EXPECT_LT(work, premium);
-            std::printf("[ radial ] G_II/G_I %.0f theta %4.1f: W/G_I %.5f (eq. 9.31 %.5f, "
-                        "independent eq. 9.29 %.5f)\n",
-                        k.GII / k.GI, deg, work / k.GI, share / k.GI, premium / k.GI);
+            std::printf(
+                "[ radial ] G_II/G_I %.0f theta %4.1f: W/G_I %.5f (eq. 9.31 %.5f, "
+                "independent eq. 9.29 %.5f)\n",
+                k.GII / k.GI, deg, work / k.GI, share / k.GI, premium / k.GI);
         }
     }
 }
@@ -376,8 +377,8 @@ TEST(JointLaw, ProportionalIsContinuousThroughTheOnset) {
             const Real o = 0.5 * op + (0.5 * op + 0.2 * dO) * i / n;
             const JointPoint r = joint_point(L, h, 1.0 / h, o, 0.85 * sp, dmax, &dn, &ds);
             if (i > 0)
-                jump = std::max({jump, std::fabs(r.sigma - sig_last) / 1e6,
-                                 std::fabs(r.tau - tau_last) / 2e6});
+                jump = std::max(
+                    {jump, std::fabs(r.sigma - sig_last) / 1e6, std::fabs(r.tau - tau_last) / 2e6});
             sig_last = r.sigma;
             tau_last = r.tau;
         }

@@ -252,7 +252,7 @@ TEST(Joints, ProportionalMixedPointStoresWhatItDoesNotDissipate) {
     OneJoint j(material(SofteningLength::Exact, MixedMode::Proportional));
     const double op = 2 * kH * kFt / kP, sp = 2 * kH * kC / kPs;  // eq. 9.4
     const double Iz = softening_integral(SofteningCurve::EvansMarathe);
-    const double dO = kGI / (Iz * kFt), dS = kGII / (Iz * kC);   // eq. 9.12, exact
+    const double dO = kGI / (Iz * kFt), dS = kGII / (Iz * kC);  // eq. 9.12, exact
     // end point: D_n = 0.24, D_s = 0.18 (D = 0.3), reached along a straight path from 0
     const double o1 = op + 0.24 * dO, s1 = sp + 0.18 * dS;
     const int n = 20000;
@@ -269,8 +269,8 @@ TEST(Joints, ProportionalMixedPointStoresWhatItDoesNotDissipate) {
     const double an = 0.24 / 0.3, as = 0.18 / 0.3;  // K = 0.3 > kMixOnset: w = 1
     EXPECT_NEAR(j.sigma(), an * z * kFt, 1e-9 * kFt);
     EXPECT_NEAR(j.tau(), as * z * kC, 1e-9 * kC);
-    const double psi = an * z * kFt * (2.0 / 3.0 * op + (o1 - op)) +
-                       as * z * kC * (2.0 / 3.0 * sp + (s1 - sp));
+    const double psi =
+        an * z * kFt * (2.0 / 3.0 * op + (o1 - op)) + as * z * kC * (2.0 / 3.0 * sp + (s1 - sp));
     EXPECT_NEAR(p1.elastic_energy, kH * psi, 1e-12 * kH * psi);
     const double w1 = j.s.work[0];
     EXPECT_GT(p1.fracture, 0.05 * w1);  // the softening dissipated
@@ -278,8 +278,8 @@ TEST(Joints, ProportionalMixedPointStoresWhatItDoesNotDissipate) {
     // end point, across to a reversed slip and back, and up to the end point again. Every point
     // has 0 <= o <= 0.8 o1 and |s| <= 0.8 s1 (so D < D_max) until the last leg retraces the
     // first; o >= 0 throughout (in compression f_s depends on o, eq. 9.7: no potential there)
-    const double corners[][2] = {{1, 1},      {0.8, 0.8}, {0.1, 0.8}, {0.1, -0.6},
-                                 {0.7, 0.0},  {0.8, 0.8}, {1, 1}};
+    const double corners[][2] = {{1, 1},     {0.8, 0.8}, {0.1, 0.8}, {0.1, -0.6},
+                                 {0.7, 0.0}, {0.8, 0.8}, {1, 1}};
     double sum_abs = 0;
     JointPass p2;
     const int m = 20000;  // points per leg
@@ -299,8 +299,8 @@ TEST(Joints, ProportionalMixedPointStoresWhatItDoesNotDissipate) {
     // the loop's work vanishes to the trapezoid rule's error (the law is smooth on it)
     EXPECT_NEAR(j.s.work[0], w1, 1e-6 * sum_abs);
     EXPECT_NEAR(p2.fracture, p1.fracture, 1e-6 * sum_abs);
-    std::printf("[ loop ] W_frac %.6e -> %.6e J/m, loop |work| %.3e of %.3e summed\n",
-                p1.fracture, p2.fracture, std::fabs(j.s.work[0] - w1), sum_abs);
+    std::printf("[ loop ] W_frac %.6e -> %.6e J/m, loop |work| %.3e of %.3e summed\n", p1.fracture,
+                p2.fracture, std::fabs(j.s.work[0] - w1), sum_abs);
 }
 
 // spec §6: the work done by the driven nodes, summed with the same trapezoid rule from the
@@ -413,72 +413,73 @@ TEST(Joints, CollapsedJointThrows) {
 
 // U8: 1, 2, 3 threads give bitwise the same forces, state and sums (several chunks, breaks)
 TEST(Joints, ThreadCountBitwise) {
-  for (const MixedMode mixed : {MixedMode::Independent, MixedMode::Proportional}) {
-    SCOPED_TRACE(mixed == MixedMode::Proportional ? "proportional" : "independent");
-    const MeshData mesh = make_rectangle_mesh(0, 0, 40 * kH, 40 * kH, 40, 40, true);
-    const SplitMesh sm = split_mesh(mesh.nodes, mesh.tris);
-    Joints J;
-    J.laws.push_back(make_joint_law(material(SofteningLength::Exact, mixed)));
-    add_edge_joints(J, sm.x0, sm.tris, sm.vertex, 0);
-    const int32_t nn = static_cast<int32_t>(sm.x0.size());
-    finalize_joints(J, nn);
-    ASSERT_GT(J.num_joints(), 2 * kJointChunk);
-    std::mt19937_64 rng(11);
-    std::uniform_real_distribution<double> U(-1, 1);
-    std::vector<Vec2> mode(static_cast<size_t>(nn));
-    for (auto& m : mode)
-        m = {U(rng), U(rng)};
-    const double amp = 2 * kH * kFt / kP;
-    auto run = [&](int threads, std::vector<Vec2>& f_out, JointState& s, std::vector<Real>& sums) {
-        const int saved = omp_get_max_threads();
-        omp_set_num_threads(threads);
-        s = make_joint_state(J);
-        std::vector<Vec2> x = sm.x0;
-        for (int n = 1; n <= 30; ++n) {
-            for (NodeId i = 0; i < nn; ++i)
-                x[static_cast<size_t>(i)] =
-                    sm.x0[static_cast<size_t>(i)] + (amp * 3 * n) * mode[static_cast<size_t>(i)];
-            f_out.assign(static_cast<size_t>(nn), Vec2{0.25, -0.5});
-            const JointPass p = joint_forces(J, s, x, f_out, n % 3 == 0, n);
-            sums.insert(sums.end(),
-                        {p.elastic_energy, p.work, p.fracture, static_cast<Real>(p.newly_broken),
-                         static_cast<Real>(p.softening)});
+    for (const MixedMode mixed : {MixedMode::Independent, MixedMode::Proportional}) {
+        SCOPED_TRACE(mixed == MixedMode::Proportional ? "proportional" : "independent");
+        const MeshData mesh = make_rectangle_mesh(0, 0, 40 * kH, 40 * kH, 40, 40, true);
+        const SplitMesh sm = split_mesh(mesh.nodes, mesh.tris);
+        Joints J;
+        J.laws.push_back(make_joint_law(material(SofteningLength::Exact, mixed)));
+        add_edge_joints(J, sm.x0, sm.tris, sm.vertex, 0);
+        const int32_t nn = static_cast<int32_t>(sm.x0.size());
+        finalize_joints(J, nn);
+        ASSERT_GT(J.num_joints(), 2 * kJointChunk);
+        std::mt19937_64 rng(11);
+        std::uniform_real_distribution<double> U(-1, 1);
+        std::vector<Vec2> mode(static_cast<size_t>(nn));
+        for (auto& m : mode)
+            m = {U(rng), U(rng)};
+        const double amp = 2 * kH * kFt / kP;
+        auto run = [&](int threads, std::vector<Vec2>& f_out, JointState& s,
+                       std::vector<Real>& sums) {
+            const int saved = omp_get_max_threads();
+            omp_set_num_threads(threads);
+            s = make_joint_state(J);
+            std::vector<Vec2> x = sm.x0;
+            for (int n = 1; n <= 30; ++n) {
+                for (NodeId i = 0; i < nn; ++i)
+                    x[static_cast<size_t>(i)] = sm.x0[static_cast<size_t>(i)] +
+                                                (amp * 3 * n) * mode[static_cast<size_t>(i)];
+                f_out.assign(static_cast<size_t>(nn), Vec2{0.25, -0.5});
+                const JointPass p = joint_forces(J, s, x, f_out, n % 3 == 0, n);
+                sums.insert(sums.end(),
+                            {p.elastic_energy, p.work, p.fracture,
+                             static_cast<Real>(p.newly_broken), static_cast<Real>(p.softening)});
+            }
+            omp_set_num_threads(saved);
+        };
+        std::vector<Vec2> f1, f2, f3;
+        JointState s1, s2, s3;
+        std::vector<Real> q1, q2, q3;
+        run(1, f1, s1, q1);
+        run(2, f2, s2, q2);
+        run(3, f3, s3, q3);
+        int broken = 0;
+        for (auto st : s1.status)
+            broken += st == JointStatus::Broken;
+        EXPECT_GT(broken, 0);
+        EXPECT_LT(broken, J.num_joints());
+        const auto same = [](const auto& a, const auto& b) {
+            return a.size() == b.size() &&
+                   std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+        };
+        for (const auto* o : {&f2, &f3})
+            EXPECT_TRUE(same(f1, *o));
+        for (const auto* o : {&q2, &q3})
+            EXPECT_TRUE(same(q1, *o));
+        for (const auto* o : {&s2, &s3}) {
+            EXPECT_TRUE(same(s1.d_max, o->d_max));
+            EXPECT_TRUE(same(s1.work, o->work));
+            EXPECT_TRUE(same(s1.status, o->status));
+            EXPECT_TRUE(same(s1.mode, o->mode));
+            EXPECT_TRUE(same(s1.break_step, o->break_step));
+            EXPECT_EQ(s1.total_work, o->total_work);
+            EXPECT_TRUE(same(s1.dn_max, o->dn_max));
+            EXPECT_TRUE(same(s1.ds_max, o->ds_max));
         }
-        omp_set_num_threads(saved);
-    };
-    std::vector<Vec2> f1, f2, f3;
-    JointState s1, s2, s3;
-    std::vector<Real> q1, q2, q3;
-    run(1, f1, s1, q1);
-    run(2, f2, s2, q2);
-    run(3, f3, s3, q3);
-    int broken = 0;
-    for (auto st : s1.status)
-        broken += st == JointStatus::Broken;
-    EXPECT_GT(broken, 0);
-    EXPECT_LT(broken, J.num_joints());
-    const auto same = [](const auto& a, const auto& b) {
-        return a.size() == b.size() &&
-               std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
-    };
-    for (const auto* o : {&f2, &f3})
-        EXPECT_TRUE(same(f1, *o));
-    for (const auto* o : {&q2, &q3})
-        EXPECT_TRUE(same(q1, *o));
-    for (const auto* o : {&s2, &s3}) {
-        EXPECT_TRUE(same(s1.d_max, o->d_max));
-        EXPECT_TRUE(same(s1.work, o->work));
-        EXPECT_TRUE(same(s1.status, o->status));
-        EXPECT_TRUE(same(s1.mode, o->mode));
-        EXPECT_TRUE(same(s1.break_step, o->break_step));
-        EXPECT_EQ(s1.total_work, o->total_work);
-        EXPECT_TRUE(same(s1.dn_max, o->dn_max));
-        EXPECT_TRUE(same(s1.ds_max, o->ds_max));
+        // the per-mode history exists with the proportional law only (theory eq. 9.30)
+        EXPECT_EQ(s1.dn_max.size(),
+                  mixed == MixedMode::Proportional ? static_cast<size_t>(J.num_joints()) : 0u);
     }
-    // the per-mode history exists with the proportional law only (theory eq. 9.30)
-    EXPECT_EQ(s1.dn_max.size(),
-              mixed == MixedMode::Proportional ? static_cast<size_t>(J.num_joints()) : 0u);
-  }
 }
 
 // The blocked path (8 intact elastic joints at a time, portable and AVX-512) gives the bits of

@@ -223,84 +223,89 @@ TEST(FractureStep, FullyJointedBarBalance) {
 // taken after the break too. The model hash of a jointed model names the joints. Both mixed-mode
 // rules: with "proportional" the per-mode damage history (theory eq. 9.30) is saved and restored.
 TEST(FractureStep, RestartThroughABreakIsBitwise) {
-  for (const MixedMode mixed : {MixedMode::Independent, MixedMode::Proportional}) {
-    SCOPED_TRACE(mixed == MixedMode::Proportional ? "proportional" : "independent");
-    Model m = pulled_bar(false);
-    for (JointLaw& L : m.joints.laws)
-        L.mixed = mixed;
-    const Real dt = 0.9 * stable_time_step(m);
-    State ref = make_state(m, dt);
-    auto broken = [](const State& s) {
-        return std::count(s.joints.status.begin(), s.joints.status.end(), JointStatus::Broken);
-    };
-    auto softening = [](const State& s) {
-        return std::count(s.joints.status.begin(), s.joints.status.end(), JointStatus::Softening);
-    };
-    State a = make_state(m, dt);
-    while (softening(a) == 0)
-        step(m, a);
-    const std::string dir = ::testing::TempDir();
-    const std::string p1 = dir + "/fracture_soft.fdck", p2 = dir + "/fracture_broken.fdck";
-    write_checkpoint(p1, m, a, {});
-    const auto dn1 = a.joints.dn_max, ds1 = a.joints.ds_max;
-    if (mixed == MixedMode::Proportional)  // the restore below compares a history, not zeros
-        EXPECT_TRUE(std::any_of(dn1.begin(), dn1.end(), [](const auto& d) { return d[1] > 0; }));
-    EXPECT_EQ(dn1.size(), mixed == MixedMode::Proportional ? static_cast<size_t>(m.joints.num_joints()) : 0u);
-    while (broken(a) == 0)
-        step(m, a);
-    for (int i = 0; i < 20; ++i)
-        step(m, a);
-    write_checkpoint(p2, m, a, {});
-    const auto dn2 = a.joints.dn_max, ds2 = a.joints.ds_max;
-    const int64_t n_total = a.step + 300;
-    while (ref.step < n_total)
-        step(m, ref);
-    ASSERT_EQ(broken(ref), kNy);
-    for (const std::string& p : {p1, p2}) {
-        State b = make_state(m, dt);
-        RunProgress q;
-        read_checkpoint(p, m, b, q);
-        // the cached z(D_max) of every damaged point (theory §9.4, not saved) is rebuilt from
-        // the saved D_max: z of it, eq. 9.10
-        int damaged = 0;
-        for (size_t j = 0; j < b.joints.d_max.size(); ++j) {
-            const SofteningCurve curve = m.joints.laws[static_cast<size_t>(m.joints.law[j])].curve;
-            for (int k = 0; k < 3; ++k) {
-                const Real d = b.joints.d_max[j][k];
-                if (!(d > 0)) continue;
-                ++damaged;
-                EXPECT_EQ(b.joints.z_max[j][k], softening_z(curve, d)) << p << " " << j;
+    for (const MixedMode mixed : {MixedMode::Independent, MixedMode::Proportional}) {
+        SCOPED_TRACE(mixed == MixedMode::Proportional ? "proportional" : "independent");
+        Model m = pulled_bar(false);
+        for (JointLaw& L : m.joints.laws)
+            L.mixed = mixed;
+        const Real dt = 0.9 * stable_time_step(m);
+        State ref = make_state(m, dt);
+        auto broken = [](const State& s) {
+            return std::count(s.joints.status.begin(), s.joints.status.end(), JointStatus::Broken);
+        };
+        auto softening = [](const State& s) {
+            return std::count(s.joints.status.begin(), s.joints.status.end(),
+                              JointStatus::Softening);
+        };
+        State a = make_state(m, dt);
+        while (softening(a) == 0)
+            step(m, a);
+        const std::string dir = ::testing::TempDir();
+        const std::string p1 = dir + "/fracture_soft.fdck", p2 = dir + "/fracture_broken.fdck";
+        write_checkpoint(p1, m, a, {});
+        const auto dn1 = a.joints.dn_max, ds1 = a.joints.ds_max;
+        if (mixed == MixedMode::Proportional)  // the restore below compares a history, not zeros
+            EXPECT_TRUE(
+                std::any_of(dn1.begin(), dn1.end(), [](const auto& d) { return d[1] > 0; }));
+        EXPECT_EQ(dn1.size(), mixed == MixedMode::Proportional
+                                  ? static_cast<size_t>(m.joints.num_joints())
+                                  : 0u);
+        while (broken(a) == 0)
+            step(m, a);
+        for (int i = 0; i < 20; ++i)
+            step(m, a);
+        write_checkpoint(p2, m, a, {});
+        const auto dn2 = a.joints.dn_max, ds2 = a.joints.ds_max;
+        const int64_t n_total = a.step + 300;
+        while (ref.step < n_total)
+            step(m, ref);
+        ASSERT_EQ(broken(ref), kNy);
+        for (const std::string& p : {p1, p2}) {
+            State b = make_state(m, dt);
+            RunProgress q;
+            read_checkpoint(p, m, b, q);
+            // the cached z(D_max) of every damaged point (theory §9.4, not saved) is rebuilt from
+            // the saved D_max: z of it, eq. 9.10
+            int damaged = 0;
+            for (size_t j = 0; j < b.joints.d_max.size(); ++j) {
+                const SofteningCurve curve =
+                    m.joints.laws[static_cast<size_t>(m.joints.law[j])].curve;
+                for (int k = 0; k < 3; ++k) {
+                    const Real d = b.joints.d_max[j][k];
+                    if (!(d > 0)) continue;
+                    ++damaged;
+                    EXPECT_EQ(b.joints.z_max[j][k], softening_z(curve, d)) << p << " " << j;
+                }
             }
+            EXPECT_GT(damaged, 0) << p;
+            EXPECT_EQ(b.joints.dn_max, p == p1 ? dn1 : dn2) << p;
+            EXPECT_EQ(b.joints.ds_max, p == p1 ? ds1 : ds2) << p;
+            if (p == p2) {
+                EXPECT_EQ(broken(b), kNy);
+                EXPECT_EQ(b.tri_fragment, a.tri_fragment);
+                EXPECT_EQ(b.node_sector, a.node_sector);
+            }
+            while (b.step < n_total)
+                step(m, b);
+            ASSERT_EQ(b.x.size(), ref.x.size());
+            EXPECT_EQ(std::memcmp(b.x.data(), ref.x.data(), ref.x.size() * sizeof(Vec2)), 0) << p;
+            EXPECT_EQ(std::memcmp(b.v.data(), ref.v.data(), ref.v.size() * sizeof(Vec2)), 0) << p;
+            EXPECT_EQ(state_hash(b), state_hash(ref)) << p;
+            EXPECT_EQ(b.joints.work, ref.joints.work);
+            EXPECT_EQ(b.joints.break_step, ref.joints.break_step);
+            EXPECT_EQ(b.tri_fragment, ref.tri_fragment);
         }
-        EXPECT_GT(damaged, 0) << p;
-        EXPECT_EQ(b.joints.dn_max, p == p1 ? dn1 : dn2) << p;
-        EXPECT_EQ(b.joints.ds_max, p == p1 ? ds1 : ds2) << p;
-        if (p == p2) {
-            EXPECT_EQ(broken(b), kNy);
-            EXPECT_EQ(b.tri_fragment, a.tri_fragment);
-            EXPECT_EQ(b.node_sector, a.node_sector);
-        }
-        while (b.step < n_total)
-            step(m, b);
-        ASSERT_EQ(b.x.size(), ref.x.size());
-        EXPECT_EQ(std::memcmp(b.x.data(), ref.x.data(), ref.x.size() * sizeof(Vec2)), 0) << p;
-        EXPECT_EQ(std::memcmp(b.v.data(), ref.v.data(), ref.v.size() * sizeof(Vec2)), 0) << p;
-        EXPECT_EQ(state_hash(b), state_hash(ref)) << p;
-        EXPECT_EQ(b.joints.work, ref.joints.work);
-        EXPECT_EQ(b.joints.break_step, ref.joints.break_step);
-        EXPECT_EQ(b.tri_fragment, ref.tri_fragment);
+        // another joint law: another model hash
+        Model other = m;
+        other.joints.laws[0].GI *= 2;
+        EXPECT_NE(model_hash(m, ref.topology, dt), model_hash(other, ref.topology, dt));
+        Model rule = m;
+        rule.joints.laws[0].mixed =
+            mixed == MixedMode::Proportional ? MixedMode::Independent : MixedMode::Proportional;
+        EXPECT_NE(model_hash(m, ref.topology, dt), model_hash(rule, ref.topology, dt));
+        std::filesystem::remove(p1);
+        std::filesystem::remove(p2);
     }
-    // another joint law: another model hash
-    Model other = m;
-    other.joints.laws[0].GI *= 2;
-    EXPECT_NE(model_hash(m, ref.topology, dt), model_hash(other, ref.topology, dt));
-    Model rule = m;
-    rule.joints.laws[0].mixed =
-        mixed == MixedMode::Proportional ? MixedMode::Independent : MixedMode::Proportional;
-    EXPECT_NE(model_hash(m, ref.topology, dt), model_hash(rule, ref.topology, dt));
-    std::filesystem::remove(p1);
-    std::filesystem::remove(p2);
-  }
 }
 
 }  // namespace
