@@ -25,6 +25,21 @@ JointMaterial granite() {
     return m;
 }
 
+// Strengths and energies of a radial-path test with penalties of 1e15 Pa: o_p, s_p ~ 1e-5 of the
+// softening range, the limit of theory eqs. 9.29 and 9.31.
+JointMaterial stiff(Real ft, Real c, Real GI, Real GII, MixedMode mixed = MixedMode::Independent) {
+    JointMaterial m;
+    m.tensile_strength = ft;
+    m.cohesion = c;
+    m.friction_angle = 30.0 * M_PI / 180.0;
+    m.fracture_energy_I = GI;
+    m.fracture_energy_II = GII;
+    m.penalty = 1.0e15;
+    m.shear_penalty = 1.0e15;
+    m.mixed_mode = mixed;
+    return m;
+}
+
 // U2: z(0) = 1, z(1) = 0, z'(0) = 0, monotone, I_z = 0.386307 (spec eq. 3.8)
 TEST(JointLaw, EvansMaratheShape) {
     const auto em = SofteningCurve::EvansMarathe;
@@ -216,15 +231,7 @@ TEST(JointLaw, MixedModeWorkOfARadialPath) {
     // example 10's rock (f_s = 3 f_t, G_II = 5 G_I), and the same strengths and energies in both
     // modes (the control runs of theory §9.3a)
     for (const Case k : {Case{1.0e7, 3.0e7, 25.0, 125.0}, Case{1.0e7, 1.0e7, 25.0, 25.0}}) {
-        JointMaterial m;
-        m.tensile_strength = k.ft;
-        m.cohesion = k.c;
-        m.friction_angle = 30.0 * M_PI / 180.0;
-        m.fracture_energy_I = k.GI;
-        m.fracture_energy_II = k.GII;
-        m.penalty = 1.0e15;
-        m.shear_penalty = 1.0e15;
-        const JointLaw L = make_joint_law(m);
+        const JointLaw L = make_joint_law(stiff(k.ft, k.c, k.GI, k.GII));
         const Real h = 1e-3;
         for (const Real deg : {0.0, 10.0, 30.0, 60.0, 90.0}) {
             const Real ca = std::cos(deg * M_PI / 180.0), sa = std::sin(deg * M_PI / 180.0);
@@ -271,16 +278,7 @@ TEST(JointLaw, ProportionalWorkOfARadialPath) {
     }
     Jw *= kMixOnset / nq / 3.0;
     for (const Case k : {Case{1.0e7, 3.0e7, 25.0, 125.0}, Case{1.0e7, 1.0e7, 25.0, 25.0}}) {
-        JointMaterial m;
-        m.tensile_strength = k.ft;
-        m.cohesion = k.c;
-        m.friction_angle = 30.0 * M_PI / 180.0;
-        m.fracture_energy_I = k.GI;
-        m.fracture_energy_II = k.GII;
-        m.penalty = 1.0e15;
-        m.shear_penalty = 1.0e15;
-        m.mixed_mode = MixedMode::Proportional;
-        const JointLaw L = make_joint_law(m);
+        const JointLaw L = make_joint_law(stiff(k.ft, k.c, k.GI, k.GII, MixedMode::Proportional));
         const Real h = 1e-3;
         for (const Real deg : {0.0, 5.0, 10.0, 20.0, 30.0, 60.0, 90.0}) {
             const Real ca = std::cos(deg * M_PI / 180.0), sa = std::sin(deg * M_PI / 180.0);
