@@ -34,12 +34,14 @@ enum class Irreversibility : uint8_t { Frozen };
 /// How a softening point shares its strength between the two modes (theory §9.3b).
 enum class MixedMode : uint8_t {
     /// spec §3 (default; Y, Y-Geo, Solidity): each traction is capped by its own strength times
-    /// z(D_max), sigma <= f_t z, |tau| <= f_s z, whatever the mix of the separation (eqs. 9.5, 9.8)
+    /// z(D_max), sigma <= f_t z, |tau| <= f_s z, whatever the mix of the separation (eqs. 9.5,
+    /// 9.8); a crack forced along inclined mesh edges dissipates up to ~1.5 G_I (eq. 9.29, §9.3a)
     Independent,
     /// each mode's traction is scaled by that mode's share of the damage reached, D_n,max/K and
     /// D_s,max/K (K = |(D_n,max, D_s,max)|), blended in over the first kMixOnset of K (theory eq.
     /// 9.30): pure modes as Independent, a radial separation dissipates
-    /// (G_I u^2 + G_II v^2)/(u^2 + v^2), u = f_t cos(theta)/G_I, v = f_s sin(theta)/G_II (eq. 9.31)
+    /// (G_I u^2 + G_II v^2)/(u^2 + v^2), u = f_t cos(theta)/G_I, v = f_s sin(theta)/G_II (eq. 9.31);
+    /// the tractions use the smallest shares reached, so no share ever rises (eq. 9.32)
     Proportional,
 };
 
@@ -128,6 +130,9 @@ struct JointState {
     /// MixedMode::Proportional's shares (theory eq. 9.30); empty unless a law of the model has
     /// that rule (make_joint_state)
     std::vector<std::array<Real, 3>> dn_max, ds_max;
+    /// smallest shares a_n, a_s of eq. 9.30 reached per point (1 at the start), which the
+    /// tractions use: the shares never rise (theory eq. 9.32); sized with dn_max
+    std::vector<std::array<Real, 3>> an_min, as_min;
     std::vector<JointStatus> status;
     std::vector<uint8_t> mode_bits;  ///< 1: a point reached D_n >= 1, 2: D_s >= 1, 4: neither alone
     std::vector<JointMode> mode;     ///< mode at breaking (None while not broken)

@@ -59,12 +59,24 @@ struct JointPoint {
 /// point (theory eq. 9.30): with K = sqrt(dn^2 + ds^2) and w = min(1, K/kMixOnset),
 /// a_n = 1 - w (1 - dn/K), a_s = 1 - w (1 - ds/K); both 1 at K = 0. A pure mode keeps its own
 /// share at exactly 1 (sqrt(dn^2) = dn), so its traction has the bits of MixedMode::Independent.
-inline void mixed_mode_shares(Real dn, Real ds, JointPoint& r) {
+/// an_min, as_min (null: not applied): the smallest shares the point has had, lowered to these
+/// and used instead of them (eq. 9.32). dn/K rises when the opening's damage grows after the
+/// slip's (or the converse); a share that rose would raise the stored energy of eq. 9.18 at a
+/// fixed separation, i.e. the joint would give back energy it never received (theory §9.3b).
+inline void mixed_mode_shares(Real dn, Real ds, JointPoint& r, Real* an_min = nullptr,
+                              Real* as_min = nullptr) {
     const Real K = std::sqrt(dn * dn + ds * ds);
-    if (!(K > 0)) return;  // no damage yet (or below sqrt of the smallest double): shares 1
-    const Real w = std::min(Real(1), K / kMixOnset);
-    r.a_n = 1.0 - w * (1.0 - dn / K);
-    r.a_s = 1.0 - w * (1.0 - ds / K);
+    if (K > 0) {  // (no damage yet, or below sqrt of the smallest double: shares 1)
+        const Real w = std::min(Real(1), K / kMixOnset);
+        r.a_n = 1.0 - w * (1.0 - dn / K);
+        r.a_s = 1.0 - w * (1.0 - ds / K);
+    }
+    if (an_min != nullptr) {  // eq. 9.32 (NaN shares: the history unchanged)
+        if (r.a_n < *an_min) *an_min = r.a_n;
+        if (r.a_s < *as_min) *as_min = r.a_s;
+        r.a_n = *an_min;
+        r.a_s = *as_min;
+    }
 }
 
 /// The law at one point of a joint of current length h (theory eqs. 9.4-9.10): opening o, slip s;
@@ -76,9 +88,11 @@ inline void mixed_mode_shares(Real dn, Real ds, JointPoint& r) {
 /// evaluating z(max(dmax, D)) every time: the same function of the same value.
 /// dn_max, ds_max (MixedMode::Proportional only; null otherwise): the point's largest D_n and
 /// D_s so far, raised to the current ones, from which the shares a_n, a_s scale the tensile and
-/// shear tractions (theory eq. 9.30; the compressive penalty is never scaled).
+/// shear tractions (theory eq. 9.30; the compressive penalty is never scaled); an_min, as_min
+/// (with them, or null): the smallest shares so far, which the tractions use (eq. 9.32).
 inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Real s, Real& dmax,
-                              Real& zmax, Real* dn_max = nullptr, Real* ds_max = nullptr) {
+                              Real& zmax, Real* dn_max = nullptr, Real* ds_max = nullptr,
+                              Real* an_min = nullptr, Real* as_min = nullptr) {
     JointPoint r;
     // eq. 9.5, compressive branch, and eq. 9.7: f_s from the current sigma_c = p o/h
     Real sigma_c = 0;
@@ -114,7 +128,7 @@ inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Rea
         }
     }
     r.z = dmax > 0 ? zmax : 1.0;
-    if (dn_max != nullptr) mixed_mode_shares(*dn_max, *ds_max, r);
+    if (dn_max != nullptr) mixed_mode_shares(*dn_max, *ds_max, r, an_min, as_min);
     // eq. 9.5: compression penalty, parabolic hardening, softening plateau scaled by z(D_max)
     // (and by the tensile share a_n of eq. 9.30: 1 unless MixedMode::Proportional)
     if (o < 0) {
@@ -132,9 +146,10 @@ inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Rea
 
 /// The same without a cache (tests, reference): z(dmax) evaluated here.
 inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Real s, Real& dmax,
-                              Real* dn_max = nullptr, Real* ds_max = nullptr) {
+                              Real* dn_max = nullptr, Real* ds_max = nullptr,
+                              Real* an_min = nullptr, Real* as_min = nullptr) {
     Real zmax = dmax > 0 ? softening_z(L.curve, dmax) : 1.0;
-    return joint_point(L, h, inv_h, o, s, dmax, zmax, dn_max, ds_max);
+    return joint_point(L, h, inv_h, o, s, dmax, zmax, dn_max, ds_max, an_min, as_min);
 }
 
 /// Intact point in its elastic range: the same arithmetic as joint_point with dmax = 0 (same

@@ -73,6 +73,8 @@ JointState make_joint_state(const Joints& J) {
     if (proportional) {
         s.dn_max.assign(n, {0, 0, 0});
         s.ds_max.assign(n, {0, 0, 0});
+        s.an_min.assign(n, {1, 1, 1});
+        s.as_min.assign(n, {1, 1, 1});
     }
     s.status.assign(n, JointStatus::Intact);
     s.mode_bits.assign(n, 0);
@@ -142,11 +144,17 @@ template <bool kEnergy, bool kMixed>
         }
         if (kMixed && L.mixed == MixedMode::Proportional) {
             // eq. 9.30: each mode's largest damage per point scales that mode's traction
+            // (eq. 9.32: the tractions use the smallest shares so far)
             auto& dn = s.dn_max[j];
             auto& ds = s.ds_max[j];
-            pa = joint_point(L, h, inv_h, oa, sa, dmax[0], zmax[0], &dn[0], &ds[0]);
-            pm = joint_point(L, h, inv_h, om, sm, dmax[1], zmax[1], &dn[1], &ds[1]);
-            pb = joint_point(L, h, inv_h, ob, sb, dmax[2], zmax[2], &dn[2], &ds[2]);
+            auto& an = s.an_min[j];
+            auto& as = s.as_min[j];
+            pa = joint_point(L, h, inv_h, oa, sa, dmax[0], zmax[0], &dn[0], &ds[0], &an[0],
+                             &as[0]);
+            pm = joint_point(L, h, inv_h, om, sm, dmax[1], zmax[1], &dn[1], &ds[1], &an[1],
+                             &as[1]);
+            pb = joint_point(L, h, inv_h, ob, sb, dmax[2], zmax[2], &dn[2], &ds[2], &an[2],
+                             &as[2]);
         } else {
             pa = joint_point(L, h, inv_h, oa, sa, dmax[0], zmax[0]);
             pm = joint_point(L, h, inv_h, om, sm, dmax[1], zmax[1]);

@@ -190,6 +190,8 @@ void put_state(Sink& o, const State& s) {
     put(o, js.d_prev);
     put(o, js.dn_max);  // since format 12 (empty unless a law is MixedMode::Proportional)
     put(o, js.ds_max);
+    put(o, js.an_min);  // since format 13 (eq. 9.32; sized with dn_max)
+    put(o, js.as_min);
     put(o, js.total_work);
     put(o, js.total_work_sum);  // since format 11, as energy_sums
     put(o, s.energy_sums.work_external);
@@ -615,6 +617,8 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
         const size_t nm = js.dn_max.size();
         r.get_sized(js.dn_max, nm, "joints.dn_max");
         r.get_sized(js.ds_max, nm, "joints.ds_max");
+        r.get_sized(js.an_min, nm, "joints.an_min");
+        r.get_sized(js.as_min, nm, "joints.as_min");
         r.get(js.total_work);
         r.get(js.total_work_sum);
         r.get(s.energy_sums.work_external);

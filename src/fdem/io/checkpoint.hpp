@@ -30,7 +30,7 @@
 namespace fdem {
 
 /// Version of the checkpoint layout; bump it whenever the payload changes.
-constexpr uint32_t kCheckpointFormat = 12;  // 2: baseline A couples (ContactState::legacy)
+constexpr uint32_t kCheckpointFormat = 13;  // 2: baseline A couples (ContactState::legacy)
                                             // 3: Energy::work_external_pending
                                             // 4: PairHistory::f_damp
                                             // 5: RunProgress::impulses (bodies.csv)
@@ -43,6 +43,7 @@ constexpr uint32_t kCheckpointFormat = 12;  // 2: baseline A couples (ContactSta
                                             // 10: PairHistory::sub (eq. 9.27)
                                             // 12: JointState::dn_max, ds_max, JointLaw::mixed
                                             //     (MixedMode::Proportional, theory eq. 9.30)
+                                            // 13: JointState::an_min, as_min (eq. 9.32)
 
 /// CLI bookkeeping that must survive a restart so output continues where it stopped.
 struct RunProgress {

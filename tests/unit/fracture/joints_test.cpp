@@ -253,12 +253,16 @@ TEST(Joints, ProportionalMixedPointStoresWhatItDoesNotDissipate) {
     const double op = 2 * kH * kFt / kP, sp = 2 * kH * kC / kPs;  // eq. 9.4
     const double Iz = softening_integral(SofteningCurve::EvansMarathe);
     const double dO = kGI / (Iz * kFt), dS = kGII / (Iz * kC);  // eq. 9.12, exact
-    // end point: D_n = 0.24, D_s = 0.18 (D = 0.3), reached along a straight path from 0
+    // end point: D_n = 0.24, D_s = 0.18 (D = 0.3), reached along a path that is straight in the
+    // damage (D_n, D_s): to both elastic limits (o_p, s_p) at once, then straight to the end
+    // point; the shares fall monotonically to D_n/D, D_s/D on it, so eq. 9.32 keeps them
     const double o1 = op + 0.24 * dO, s1 = sp + 0.18 * dS;
     const int n = 20000;
     JointPass p1;
+    for (int k = 1; k <= n / 10; ++k)
+        j.at(sp * k / (n / 10), op * k / (n / 10), true);
     for (int k = 1; k <= n; ++k)
-        p1 = j.at(s1 * k / n, o1 * k / n, true);
+        p1 = j.at(sp + (s1 - sp) * k / n, op + (o1 - op) * k / n, true);
     EXPECT_EQ(j.s.status[0], JointStatus::Softening);
     for (int q = 0; q < 3; ++q) {
         EXPECT_NEAR(j.s.d_max[0][q], 0.3, 1e-12);

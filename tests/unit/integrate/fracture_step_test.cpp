@@ -244,9 +244,14 @@ TEST(FractureStep, RestartThroughABreakIsBitwise) {
         const std::string p1 = dir + "/fracture_soft.fdck", p2 = dir + "/fracture_broken.fdck";
         write_checkpoint(p1, m, a, {});
         const auto dn1 = a.joints.dn_max, ds1 = a.joints.ds_max;
-        if (mixed == MixedMode::Proportional)  // the restore below compares a history, not zeros
+        const auto an1 = a.joints.an_min, as1 = a.joints.as_min;  // eq. 9.32
+        if (mixed == MixedMode::Proportional) {  // the restore below compares a history
             EXPECT_TRUE(
                 std::any_of(dn1.begin(), dn1.end(), [](const auto& d) { return d[1] > 0; }));
+            EXPECT_TRUE(
+                std::any_of(as1.begin(), as1.end(), [](const auto& a_) { return a_[1] < 1; }));
+        }
+        EXPECT_EQ(as1.size(), dn1.size());
         EXPECT_EQ(dn1.size(), mixed == MixedMode::Proportional
                                   ? static_cast<size_t>(m.joints.num_joints())
                                   : 0u);
@@ -256,6 +261,7 @@ TEST(FractureStep, RestartThroughABreakIsBitwise) {
             step(m, a);
         write_checkpoint(p2, m, a, {});
         const auto dn2 = a.joints.dn_max, ds2 = a.joints.ds_max;
+        const auto an2 = a.joints.an_min, as2 = a.joints.as_min;
         const int64_t n_total = a.step + 300;
         while (ref.step < n_total)
             step(m, ref);
@@ -280,6 +286,8 @@ TEST(FractureStep, RestartThroughABreakIsBitwise) {
             EXPECT_GT(damaged, 0) << p;
             EXPECT_EQ(b.joints.dn_max, p == p1 ? dn1 : dn2) << p;
             EXPECT_EQ(b.joints.ds_max, p == p1 ? ds1 : ds2) << p;
+            EXPECT_EQ(b.joints.an_min, p == p1 ? an1 : an2) << p;
+            EXPECT_EQ(b.joints.as_min, p == p1 ? as1 : as2) << p;
             if (p == p2) {
                 EXPECT_EQ(broken(b), kNy);
                 EXPECT_EQ(b.tri_fragment, a.tri_fragment);

@@ -359,7 +359,9 @@ TEST(CheckpointLayout, StateStructsAreTheOnesTheCheckpointKnows) {
     // function of the saved d_max, not saved (the restore recomputes it)
     // 4856 -> 4904: JointState::dn_max, ds_max, the per-mode damage history of
     // mixed_mode = "proportional" (theory eq. 9.30), saved since format 12
-    EXPECT_EQ(sizeof(State), 4904u) << "State changed: update io/checkpoint.cpp";
+    // 4904 -> 4952: JointState::an_min, as_min, the smallest shares reached (theory eq. 9.32),
+    // saved since format 13
+    EXPECT_EQ(sizeof(State), 4952u) << "State changed: update io/checkpoint.cpp";
 }
 
 // Loads (theory §4.1): the half of the load work that belongs after t^n travels in
