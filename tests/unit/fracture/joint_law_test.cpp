@@ -25,6 +25,16 @@ JointMaterial granite() {
     return m;
 }
 
+// granite() with MixedMode::Proportional, and a point of length h = 0.01 m: o_p = 2 h f_t/p,
+// s_p = 2 h c/p_s (eq. 9.4)
+JointLaw proportional_granite() {
+    JointMaterial m = granite();
+    m.mixed_mode = MixedMode::Proportional;
+    return make_joint_law(m);
+}
+constexpr Real kGraniteH = 0.01;
+constexpr Real kGraniteOp = 2 * kGraniteH * 1e6 / 1e10, kGraniteSp = 2 * kGraniteH * 2e6 / 2e10;
+
 // Strengths and energies of a radial-path test with penalties of 1e15 Pa: o_p, s_p ~ 1e-5 of the
 // softening range, the limit of theory eqs. 9.29 and 9.31.
 JointMaterial stiff(Real ft, Real c, Real GI, Real GII, MixedMode mixed = MixedMode::Independent) {
@@ -367,11 +377,8 @@ TEST(JointLaw, ProportionalPureModesKeepTheIndependentBits) {
 // With eq. 9.32 the dissipation never falls on this path or on random mixed paths. Work by the
 // trapezoidal rule over 3 x 20 000 steps; psi by joint_point_energy (eq. 9.18).
 TEST(JointLaw, ProportionalSharesNeverRise) {
-    JointMaterial m = granite();
-    m.mixed_mode = MixedMode::Proportional;
-    const JointLaw L = make_joint_law(m);
-    const Real h = 0.01;
-    const Real op = 2 * h * 1e6 / 1e10, sp = 2 * h * 2e6 / 2e10;
+    const JointLaw L = proportional_granite();
+    const Real h = kGraniteH, op = kGraniteOp, sp = kGraniteSp;
     const Real dO = 100.0 / (L.Iz * 1e6), dS = 200.0 / (L.Iz * 2e6);  // eq. 9.12, "exact"
     // the largest fall of the dissipation below its running maximum (0: it never falls) and
     // W - psi at the end of the path
@@ -458,11 +465,8 @@ TEST(JointLaw, ProportionalSharesNeverRise) {
 // blend (w = 1 at once) the shear traction of this path would drop from 0.98 c to 0 in one step
 // when o crosses o_p.
 TEST(JointLaw, ProportionalIsContinuousThroughTheOnset) {
-    JointMaterial m = granite();
-    m.mixed_mode = MixedMode::Proportional;
-    const JointLaw L = make_joint_law(m);
-    const Real h = 0.01;
-    const Real op = 2 * h * 1e6 / 1e10, sp = 2 * h * 2e6 / 2e10;
+    const JointLaw L = proportional_granite();
+    const Real h = kGraniteH, op = kGraniteOp, sp = kGraniteSp;
     const Real dO = 100.0 / (L.Iz * 1e6);
     // slip held at 0.85 s_p (pre-peak shear), opening from 0.5 o_p to o_p + 0.2 dO: the onset of
     // normal damage at o = o_p with the shear in its elastic branch, then D_n up to 0.2
