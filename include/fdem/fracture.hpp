@@ -40,8 +40,8 @@ enum class MixedMode : uint8_t {
     /// each mode's traction is scaled by that mode's share of the damage reached, D_n,max/K and
     /// D_s,max/K (K = |(D_n,max, D_s,max)|), blended in over the first kMixOnset of K (theory eq.
     /// 9.30): pure modes as Independent, a radial separation dissipates
-    /// (G_I u^2 + G_II v^2)/(u^2 + v^2), u = f_t cos(theta)/G_I, v = f_s sin(theta)/G_II (eq. 9.31);
-    /// the tractions use the smallest shares reached, so no share ever rises (eq. 9.32)
+    /// (G_I u^2 + G_II v^2)/(u^2 + v^2), u = f_t cos(theta)/G_I, v = f_s sin(theta)/G_II
+    /// (eq. 9.31); the tractions use the smallest shares reached, so none ever rises (eq. 9.32)
     Proportional,
 };
 

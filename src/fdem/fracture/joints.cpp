@@ -149,12 +149,9 @@ template <bool kEnergy, bool kMixed>
             auto& ds = s.ds_max[j];
             auto& an = s.an_min[j];
             auto& as = s.as_min[j];
-            pa = joint_point(L, h, inv_h, oa, sa, dmax[0], zmax[0], &dn[0], &ds[0], &an[0],
-                             &as[0]);
-            pm = joint_point(L, h, inv_h, om, sm, dmax[1], zmax[1], &dn[1], &ds[1], &an[1],
-                             &as[1]);
-            pb = joint_point(L, h, inv_h, ob, sb, dmax[2], zmax[2], &dn[2], &ds[2], &an[2],
-                             &as[2]);
+            pa = joint_point(L, h, inv_h, oa, sa, dmax[0], zmax[0], &dn[0], &ds[0], &an[0], &as[0]);
+            pm = joint_point(L, h, inv_h, om, sm, dmax[1], zmax[1], &dn[1], &ds[1], &an[1], &as[1]);
+            pb = joint_point(L, h, inv_h, ob, sb, dmax[2], zmax[2], &dn[2], &ds[2], &an[2], &as[2]);
         } else {
             pa = joint_point(L, h, inv_h, oa, sa, dmax[0], zmax[0]);
             pm = joint_point(L, h, inv_h, om, sm, dmax[1], zmax[1]);

@@ -422,9 +422,10 @@ TEST(JointLaw, ProportionalSharesNeverRise) {
     const Real fall_raw = run(false, path, 3 * n, end_raw);
     const Real fall_mono = run(true, path, 3 * n, end_mono);
     const Real scale = 1e6 * dO;  // f_t times the normal softening range [J/m^2]
-    std::printf("[ shares ] fall of W - psi / (f_t dO): eq. 9.30 alone %.4f, with eq. 9.32 %.2e; "
-                "at the end %.4f / %.4f\n",
-                fall_raw / scale, fall_mono / scale, end_raw / scale, end_mono / scale);
+    std::printf(
+        "[ shares ] fall of W - psi / (f_t dO): eq. 9.30 alone %.4f, with eq. 9.32 %.2e; "
+        "at the end %.4f / %.4f\n",
+        fall_raw / scale, fall_mono / scale, end_raw / scale, end_mono / scale);
     // the trapezoidal rule's own error on the cubic psi of the pre-peak branch is ~1e-6 f_t dO
     // at these steps (it falls 4x when they halve); the rising shares' giving back is 0.019
     EXPECT_GT(fall_raw, 0.01 * scale);  // the path does expose rising shares
@@ -455,8 +456,9 @@ TEST(JointLaw, ProportionalSharesNeverRise) {
         EXPECT_LE(fall, 1e-5 * scale) << "trial " << trial;
         raw_falls += run(false, rpath, 8 * seg, end) > 1e-3 * scale;
     }
-    std::printf("[ shares ] random tensile paths where eq. 9.30 alone gives energy back: %d of 20\n",
-                raw_falls);
+    std::printf(
+        "[ shares ] random tensile paths where eq. 9.30 alone gives energy back: %d of 20\n",
+        raw_falls);
 }
 
 // The shares are blended in from 1 (eq. 9.30), so the tractions are continuous through the onset
