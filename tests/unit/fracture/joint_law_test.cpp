@@ -305,6 +305,8 @@ TEST(JointLaw, ProportionalWorkOfARadialPath) {
             Real dmax = 0, dn = 0, ds = 0, work = 0, f_last = 0;
             for (int i = 0; i <= n; ++i) {
                 const Real d = i * step;
+                // eq. 9.30 alone: eq. 9.31 is its work (with eq. 9.32 the two elastic limits,
+                // crossed at slightly different delta, take up to 8e-5 of the work off)
                 const JointPoint r = joint_point(L, h, 1.0 / h, d * ca, d * sa, dmax, &dn, &ds);
                 const Real f = r.sigma * ca + r.tau * sa;  // traction along the path
                 if (i > 0) work += 0.5 * (f + f_last) * step;
@@ -346,14 +348,14 @@ TEST(JointLaw, ProportionalPureModesKeepTheIndependentBits) {
     std::uniform_real_distribution<double> U(0, 1);
     for (int mode = 0; mode < 2; ++mode) {
         for (int path = 0; path < 20; ++path) {
-            Real di = 0, dp = 0, dn = 0, ds = 0, amp = 0;
+            Real di = 0, dp = 0, dn = 0, ds = 0, an = 1, as = 1, amp = 0;
             int damaged = 0;
             for (int i = 0; i < 400; ++i) {
                 amp = std::max(amp, 0.0) + (U(rng) - 0.35) * 40 * (mode == 0 ? op : sp);
                 const Real a = std::max(amp, -0.5 * op);
                 const Real o = mode == 0 ? a : 0.0, s = mode == 0 ? 0.0 : (i % 2 ? a : -a);
                 const JointPoint ri = joint_point(Li, h, 1.0 / h, o, s, di);
-                const JointPoint rp = joint_point(Lp, h, 1.0 / h, o, s, dp, &dn, &ds);
+                const JointPoint rp = joint_point(Lp, h, 1.0 / h, o, s, dp, &dn, &ds, &an, &as);
                 ASSERT_EQ(bits(ri.sigma), bits(rp.sigma)) << mode << " " << i;
                 ASSERT_EQ(bits(ri.tau), bits(rp.tau)) << mode << " " << i;
                 ASSERT_EQ(bits(di), bits(dp));
@@ -473,10 +475,10 @@ TEST(JointLaw, ProportionalIsContinuousThroughTheOnset) {
     // slip held at 0.85 s_p (pre-peak shear), opening from 0.5 o_p to o_p + 0.2 dO: the onset of
     // normal damage at o = o_p with the shear in its elastic branch, then D_n up to 0.2
     auto largest_jump = [&](int n) {
-        Real dmax = 0, dn = 0, ds = 0, jump = 0, sig_last = 0, tau_last = 0;
+        Real dmax = 0, dn = 0, ds = 0, an = 1, as = 1, jump = 0, sig_last = 0, tau_last = 0;
         for (int i = 0; i <= n; ++i) {
             const Real o = 0.5 * op + (0.5 * op + 0.2 * dO) * i / n;
-            const JointPoint r = joint_point(L, h, 1.0 / h, o, 0.85 * sp, dmax, &dn, &ds);
+            const JointPoint r = joint_point(L, h, 1.0 / h, o, 0.85 * sp, dmax, &dn, &ds, &an, &as);
             if (i > 0)
                 jump = std::max(
                     {jump, std::fabs(r.sigma - sig_last) / 1e6, std::fabs(r.tau - tau_last) / 2e6});
