@@ -1,8 +1,9 @@
-// Example 11, optional part of spec V8: an expanding ring for Grady's fragment size. Mean radius
-// 0.1 m, thickness 10 mm (inner 95 mm, outer 105 mm), centred at the origin. Every internal edge
-// becomes a cohesive joint. Mesh size comes from the scenario (ring.toml, mesh_size).
-Ri = 0.095;                // m: inner radius
-Ro = 0.105;                // m: outer radius
+// Example 11, optional part of spec V8: an expanding ring for the fragment size. Mean radius
+// 0.1 m, thickness 2.5 mm (inner 98.75 mm, outer 101.25 mm), centred at the origin: thinner than
+// the fragments it is checked for (>= 3.9 mm, theory §9.8), so it segments as the 1-D bar of the
+// reference. Every internal edge becomes a cohesive joint. Mesh size: ring.toml (mesh_size).
+Ri = 0.09875;              // m: inner radius
+Ro = 0.10125;              // m: outer radius
 Point(1) = {0, 0, 0};
 Point(2) = {Ri, 0, 0}; Point(3) = {0, Ri, 0}; Point(4) = {-Ri, 0, 0}; Point(5) = {0, -Ri, 0};
 Point(6) = {Ro, 0, 0}; Point(7) = {0, Ro, 0}; Point(8) = {-Ro, 0, 0}; Point(9) = {0, -Ro, 0};
