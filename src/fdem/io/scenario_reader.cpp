@@ -402,7 +402,7 @@ private:
                                irr));
         }
         j.irreversibility = Irreversibility::Frozen;
-        j.mixed_mode = f.choice("mixed_mode", std::string("proportional"),
+        j.mixed_mode = f.choice("mixed_mode", std::string("independent"),
                                 {"independent", "proportional"}) == "proportional"
                            ? MixedMode::Proportional
                            : MixedMode::Independent;
