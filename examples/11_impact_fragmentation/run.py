@@ -144,7 +144,21 @@ def evaluate(d, rho, v):
             "history": hist, "final_frame": frames[-1][1]}
 
 
-RING_R, RING_RI, RING_RO = 0.1, 0.09875, 0.10125  # m: ring.geo (mean, inner, outer radius)
+def ring_radii():
+    """Inner and outer radius [m] as ring.geo defines them (`Ri = ...;`, `Ro = ...;`), so the
+    study's thickness and KE0 follow the geometry file instead of a copy of its numbers."""
+    text = open(os.path.join(HERE, "ring.geo")).read()
+    radii = []
+    for name in ("Ri", "Ro"):
+        m = re.search(rf"(?m)^{name} = ([0-9.eE+-]+);", text)
+        if not m:
+            sys.exit(f"error: ring.geo: no line '{name} = <value>;'")
+        radii.append(float(m.group(1)))
+    return radii
+
+
+RING_RI, RING_RO = ring_radii()  # m: ring.geo (inner, outer radius)
+RING_R = 0.5 * (RING_RI + RING_RO)  # m: mean radius
 RING_RATES = [30.0, 100.0, 300.0]  # 1/s: hoop strain rates of the ring study (--ring, --full)
 # --quick --ring (CTest validation.impact_quick): the two lower rates on ring.toml's 0.625 mm mesh,
 # ~95 s on one core (1.25 mm, two elements through the thickness, would take 15 s but resolves
