@@ -37,12 +37,14 @@ double bytes(const std::vector<T>& v) {
     return static_cast<double>(v.capacity() * sizeof(T));
 }
 
-// bytes of the joint arrays (Model::joints and State::joints), by capacity
+// bytes of the joint arrays (Model::joints and State::joints), by capacity; dn_max ... as_min are
+// sized only for mixed_mode = "proportional" (the default since 2026-12-02: 96 B per joint)
 double joint_bytes(const Model& m, const State& s) {
     const Joints& J = m.joints;
     const JointState& js = s.joints;
     return bytes(J.nodes) + bytes(J.length0) + bytes(J.law) + bytes(J.laws) + bytes(J.gather_node) +
            bytes(J.gather_begin) + bytes(J.gather_entry) + bytes(js.d_max) + bytes(js.z_max) +
+           bytes(js.dn_max) + bytes(js.ds_max) + bytes(js.an_min) + bytes(js.as_min) +
            bytes(js.status) + bytes(js.mode_bits) + bytes(js.mode) + bytes(js.break_step) +
            bytes(js.work) + bytes(js.f_prev) + bytes(js.d_prev) + bytes(js.jf) +
            bytes(js.chunk_sums);

@@ -33,22 +33,26 @@ enum class Irreversibility : uint8_t { Frozen };
 
 /// How a softening point shares its strength between the two modes (theory §9.3b).
 enum class MixedMode : uint8_t {
-    /// spec §3 (default; Y, Y-Geo, Solidity): each traction is capped by its own strength times
-    /// z(D_max), sigma <= f_t z, |tau| <= f_s z, whatever the mix of the separation (eqs. 9.5,
-    /// 9.8); a crack forced along inclined mesh edges dissipates up to ~1.5 G_I (eq. 9.29, §9.3a)
+    /// spec §3 (Y, Y-Geo, Solidity): each traction is capped by its own strength times z(D_max),
+    /// sigma <= f_t z, |tau| <= f_s z, whatever the mix of the separation (eqs. 9.5, 9.8); a
+    /// crack forced along inclined mesh edges dissipates up to ~1.5 G_I (eq. 9.29, theory §9.3a)
     Independent,
     /// each mode's traction is scaled by that mode's share of the damage reached, D_n,max/K and
     /// D_s,max/K (K = |(D_n,max, D_s,max)|), blended in over the first kMixOnset of K (theory eq.
     /// 9.30): pure modes as Independent, a radial separation dissipates
     /// (G_I u^2 + G_II v^2)/(u^2 + v^2), u = f_t cos(theta)/G_I, v = f_s sin(theta)/G_II
-    /// (eq. 9.31); the tractions use the smallest shares reached, so none ever rises (eq. 9.32)
+    /// (eq. 9.31); the tractions use the smallest shares reached, so none ever rises (eq. 9.32).
+    /// The default (theory §9.3c: V6 on unstructured meshes, V7 on a zigzag path)
     Proportional,
 };
 
 /// Width in K = |(D_n,max, D_s,max)| over which MixedMode::Proportional's shares are blended in
 /// from 1 (theory eq. 9.30): the shares are undefined at K = 0, so the tractions would jump at the
-/// onset of damage without it.
-inline constexpr Real kMixOnset = 0.05;
+/// onset of damage without it. Over the blend a mode with no damage of its own keeps 1 - K/K_w of
+/// its strength; 0.05 until 2026-12-02 locked such a mode at 0 too early (spec V4 at D/l_ch = 40
+/// split the disc under a platen), 0.2 keeps 24 % of the spec law's mixed-mode premium (theory
+/// §9.3d).
+inline constexpr Real kMixOnset = 0.2;
 
 /// Joint parameters of one material (spec §3.1, §10). Units: Pa, rad, J/m^2.
 struct JointMaterial {
@@ -62,7 +66,7 @@ struct JointMaterial {
     SofteningCurve softening = SofteningCurve::EvansMarathe;
     SofteningLength softening_length = SofteningLength::Exact;
     Irreversibility irreversibility = Irreversibility::Frozen;
-    MixedMode mixed_mode = MixedMode::Independent;
+    MixedMode mixed_mode = MixedMode::Proportional;
     int32_t failure_points = 2;  ///< 1..3 integration points with D >= 1 break the joint
     /// Accept joints longer than h_max (theory eq. 9.14), whose softening branch is shorter than
     /// 2 o_p; false: finalize_model() rejects them (InputError naming the longest joint)

@@ -402,7 +402,7 @@ private:
                                irr));
         }
         j.irreversibility = Irreversibility::Frozen;
-        j.mixed_mode = f.choice("mixed_mode", std::string("independent"),
+        j.mixed_mode = f.choice("mixed_mode", std::string("proportional"),
                                 {"independent", "proportional"}) == "proportional"
                            ? MixedMode::Proportional
                            : MixedMode::Independent;

@@ -89,7 +89,7 @@ TEST(FractureInput, ParametersAndDefaults) {
     EXPECT_EQ(j.irreversibility, Irreversibility::Frozen);
     EXPECT_EQ(j.failure_points, 2);
     EXPECT_FALSE(j.allow_coarse);
-    EXPECT_EQ(j.mixed_mode, MixedMode::Independent);
+    EXPECT_EQ(j.mixed_mode, MixedMode::Proportional);  // theory §9.3c
     EXPECT_EQ(sc.run.fracture.output_joints, JointOutput::Damaged);
     EXPECT_EQ(sc.run.fracture.fragments, FragmentOutput::Interval);
     EXPECT_TRUE(sc.warnings.empty());
@@ -106,7 +106,7 @@ TEST(FractureInput, EveryOptionalKey) {
                                   "failure_points = 3\n"
                                   "residual_friction = 0.0\n"
                                   "allow_coarse = true\n"
-                                  "mixed_mode = \"proportional\"\n"
+                                  "mixed_mode = \"independent\"\n"
                                   "\n[fracture]\n"
                                   "crack_contact = \"self\"\n"
                                   "contact_targets = \"copies\"\n"
@@ -119,7 +119,7 @@ TEST(FractureInput, EveryOptionalKey) {
     EXPECT_EQ(j.softening_length, SofteningLength::YGeo);
     EXPECT_EQ(j.failure_points, 3);
     EXPECT_TRUE(j.allow_coarse);
-    EXPECT_EQ(j.mixed_mode, MixedMode::Proportional);
+    EXPECT_EQ(j.mixed_mode, MixedMode::Independent);
     EXPECT_EQ(sc.run.fracture.output_joints, JointOutput::All);
     EXPECT_EQ(sc.run.fracture.fragments, FragmentOutput::End);
     for (const auto& [rule, want] : {std::pair{"solidity", SofteningLength::Solidity},

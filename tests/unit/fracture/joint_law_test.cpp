@@ -406,9 +406,10 @@ TEST(JointLaw, ProportionalSharesNeverRise) {
         return fall;
     };
     const int n = 20000;
-    // D_s = 0.04 < K_w: a_n = 1 - K/K_w = 0.2 after the slip; the opening to D_n = 0.1 raises it to
-    // D_n/K = 0.93 while z(D_max) falls only from z(0.04) to z(0.108) (z'(0) = 0)
-    const Real s1 = sp + 0.04 * dS, o1 = op + 0.1 * dO;
+    // D_s = 0.8 K_w < K_w: a_n = 1 - K/K_w = 0.2 after the slip; the opening to D_n = 2 K_w raises
+    // it to D_n/K = 0.93 while a_n z(D_max) rises (K_w = 0.2: from 0.2 z(0.16) = 0.15 to
+    // 0.93 z(0.43) = 0.35)
+    const Real s1 = sp + 0.8 * kMixOnset * dS, o1 = op + 2.0 * kMixOnset * dO;
     const auto path = [&](int i, Real& o, Real& s) {
         const int k = std::min((i - 1) / n, 2);  // phase 0, 1, 2 over steps 1..n, ..., 2n+1..3n
         const Real t = static_cast<Real>(i - k * n) / n;
@@ -429,9 +430,9 @@ TEST(JointLaw, ProportionalSharesNeverRise) {
         "at the end %.4f / %.4f\n",
         fall_raw / scale, fall_mono / scale, end_raw / scale, end_mono / scale);
     // the trapezoidal rule's own error on the cubic psi of the pre-peak branch is ~1e-6 f_t dO
-    // at these steps (it falls 4x when they halve); the rising shares' giving back is 0.019
+    // at these steps (it falls 4x when they halve); the rising shares' giving back is 0.029
+    // (K_w = 0.2; 0.019 with K_w = 0.05, where the joint ended with W - psi < 0)
     EXPECT_GT(fall_raw, 0.01 * scale);  // the path does expose rising shares
-    EXPECT_LT(end_raw, 0.0);            // ... so much that the joint ends with energy to spare
     EXPECT_LE(fall_mono, 1e-7 * scale);
     EXPECT_GT(end_mono, 0.0);
     // random mixed loading, unloading and reloading in tension, both slip signs (with o < 0 the
