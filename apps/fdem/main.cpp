@@ -166,8 +166,10 @@ void print_fracture(const fdem::Scenario& sc) {
             o_p, s_p, soft, rule, p, jm.shear_penalty,
             jm.mixed_mode == fdem::MixedMode::Proportional ? "proportional" : "independent",
             jm.mixed_mode == fdem::MixedMode::Proportional
-                ? "eq. 9.30: each softened traction scaled by its mode's share of the damage"
-                : "eqs. 9.5, 9.8: each traction capped at its own strength times z");
+                ? fmt::format("eq. 9.30: each softened traction scaled by its mode's share of the "
+                              "damage, blended in over K_w = {:g}",
+                              fdem::kMixOnset)
+                : std::string("eqs. 9.5, 9.8: each traction capped at its own strength times z"));
         fmt::print(
             "           l_ch = E G_I/f_t^2 = {:.4g} m; E_eff = E/(1 + c_m E/p) = {:.4g} Pa = "
             "{:.3f} E, c_m = 3/2 + p/(2 p_s) = {:.4g} (eq. 9.6, structured mesh)\n",

@@ -87,7 +87,7 @@ set_tests_properties(cli.check_lists_loads PROPERTIES LABELS input
 add_test(NAME cli.check_prints_fracture
          COMMAND fdem_cli check ${PROJECT_SOURCE_DIR}/examples/07_pull_apart/scenario.toml)
 set_tests_properties(cli.check_prints_fracture PROPERTIES LABELS input
-  PASS_REGULAR_EXPRESSION "fracture   material \"rock\": 5 joints, h 0.004 \\.\\. 0.004 m \\(mean 0.004 m\\), h_max 0.1618 m \\(eq. 9.14\\)\n +at the mean h: o_p 1.6e-07 m, s_p 4.8e-07 m \\(eq. 9.4\\), o_r - o_p 1.294e-05 m \\(\"exact\", eq. 9.12\\)[^\n]*\n +mixed mode \"proportional\" \\(eq. 9.30: each softened traction scaled by its mode's share of the damage\\)\n +l_ch = E G_I/f_t\\^2 = 0.025 m. E_eff = E/\\(1 \\+ c_m E/p\\) = 4.167e\\+10 Pa = 0.833 E, c_m = 3/2 \\+ p/\\(2 p_s\\) = 2 \\(eq. 9.6[^\n]*\ndt limits  elements [0-9.e+-]+ s, joints [0-9.e+-]+ s \\(eq. 9.16\\), contact none")
+  PASS_REGULAR_EXPRESSION "fracture   material \"rock\": 5 joints, h 0.004 \\.\\. 0.004 m \\(mean 0.004 m\\), h_max 0.1618 m \\(eq. 9.14\\)\n +at the mean h: o_p 1.6e-07 m, s_p 4.8e-07 m \\(eq. 9.4\\), o_r - o_p 1.294e-05 m \\(\"exact\", eq. 9.12\\)[^\n]*\n +mixed mode \"proportional\" \\(eq. 9.30: each softened traction scaled by its mode's share of the damage, blended in over K_w = 0.2\\)\n +l_ch = E G_I/f_t\\^2 = 0.025 m. E_eff = E/\\(1 \\+ c_m E/p\\) = 4.167e\\+10 Pa = 0.833 E, c_m = 3/2 \\+ p/\\(2 p_s\\) = 2 \\(eq. 9.6[^\n]*\ndt limits  elements [0-9.e+-]+ s, joints [0-9.e+-]+ s \\(eq. 9.16\\), contact none")
 
 # the same with p_s = p/2 = 2.5e11 Pa (tests/data/pull_apart_soft_shear.toml): s_p = 2 h c/p_s =
 # 9.6e-7 m, c_m = 3/2 + p/(2 p_s) = 2.5, E_eff/E = 1/(1 + 2.5/10) = 0.8 = 4e10 Pa
@@ -177,4 +177,4 @@ set_tests_properties(cli.decompose_zero_parts_exits_2 cli.decompose_unknown_part
 add_test(NAME cli.check_prints_mixed_mode
          COMMAND fdem_cli check ${PROJECT_SOURCE_DIR}/tests/data/pull_apart_proportional.toml)
 set_tests_properties(cli.check_prints_mixed_mode PROPERTIES LABELS input
-  PASS_REGULAR_EXPRESSION "shear 5e\\+11 Pa\n +mixed mode \"proportional\" \\(eq. 9.30: each softened traction scaled by its mode's share of the damage\\)\n +l_ch")
+  PASS_REGULAR_EXPRESSION "shear 5e\\+11 Pa\n +mixed mode \"proportional\" \\(eq. 9.30: each softened traction scaled by its mode's share of the damage, blended in over K_w = 0.2\\)\n +l_ch")
