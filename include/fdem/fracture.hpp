@@ -42,7 +42,8 @@ enum class MixedMode : uint8_t {
     /// 9.30): pure modes as Independent, a radial separation dissipates
     /// (G_I u^2 + G_II v^2)/(u^2 + v^2), u = f_t cos(theta)/G_I, v = f_s sin(theta)/G_II
     /// (eq. 9.31); the tractions use the smallest shares reached, so none ever rises (eq. 9.32).
-    /// The default (theory §9.3c: V6 on unstructured meshes, V7 on a zigzag path)
+    /// The default since 2026-12-02 (theory §9.3d: V4, V6 on unstructured meshes, V7 on a zigzag
+    /// path)
     Proportional,
 };
 

@@ -69,7 +69,7 @@ add_test(NAME validation.bending_quick
 set_tests_properties(validation.bending_quick PROPERTIES LABELS validation TIMEOUT 600)
 
 # Example 10's unstructured beam (Gmsh algorithm 5, D/l_ch = 5, to ~12 delta_peak) with the
-# default joint law, mixed_mode = "proportional" (docs/theory.md §9.3b, §9.3c): spec V6's work of
+# default joint law, mixed_mode = "proportional" (docs/theory.md §9.3b, §9.3d): spec V6's work of
 # fracture G_I +- 15 %, which the spec's law ("independent") misses on this mesh (1.248 G_I;
 # 1.072 G_I measured with the default, K_w = 0.2, theory §9.3d). ~1.5 min on one core.
 add_test(NAME validation.bending_unstructured

@@ -89,7 +89,7 @@ TEST(FractureInput, ParametersAndDefaults) {
     EXPECT_EQ(j.irreversibility, Irreversibility::Frozen);
     EXPECT_EQ(j.failure_points, 2);
     EXPECT_FALSE(j.allow_coarse);
-    EXPECT_EQ(j.mixed_mode, MixedMode::Proportional);  // theory §9.3c
+    EXPECT_EQ(j.mixed_mode, MixedMode::Proportional);  // theory §9.3d
     EXPECT_EQ(sc.run.fracture.output_joints, JointOutput::Damaged);
     EXPECT_EQ(sc.run.fracture.fragments, FragmentOutput::Interval);
     EXPECT_TRUE(sc.warnings.empty());
