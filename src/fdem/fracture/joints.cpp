@@ -470,6 +470,69 @@ FDEM_JOINT_AVX512_TARGET bool block_law_avx512(const Joints& J, JointState& s,
     store_records_avx512(s.d_prev[static_cast<size_t>(j0)].data(), B.dax, B.day, B.dbx, B.dby);
     return true;
 }
+
+// The same block for CPUs with AVX2 but without AVX-512 (e.g. AMD Zen 1-3, many desktop Intel):
+// block_core compiled for 256-bit vectors (two per 8 lanes) instead of baseline SSE2's 128-bit
+// ones. No FMA (the target adds none and -ffp-contract=off): the same IEEE operations in the
+// same order, so the same bits as every other path (Joints.BlockedPathSameBits).
+#define FDEM_JOINT_AVX2_TARGET __attribute__((target("avx2")))
+
+// gather_positions with AVX2: per 4 lanes, two 32-byte vectors hold the 16-byte Vec2 of lanes
+// (0, 2) and (1, 3), so one unpack gives x and one gives y in lane order. Only moves data.
+FDEM_JOINT_AVX2_TARGET [[gnu::always_inline]] inline void gather_positions_avx2(
+    const Joints& J, const Vec2* __restrict x, int32_t j0, BlockPositions& P) {
+    static_assert(sizeof(J.nodes[0]) == 4 * sizeof(int32_t) && sizeof(Vec2) == 2 * sizeof(double));
+    const int32_t* q = J.nodes[static_cast<size_t>(j0)].data();
+    const double* xd = reinterpret_cast<const double*>(x);
+    const auto at = [&](int i, int k) {
+        return _mm_loadu_pd(xd + 2 * static_cast<ptrdiff_t>(q[4 * i + k]));
+    };
+    for (int k = 0; k < 4; ++k) {
+        for (int h = 0; h < kLanes; h += 4) {
+            // a = x_h y_h x_{h+2} y_{h+2}, b = x_{h+1} y_{h+1} x_{h+3} y_{h+3}
+            const __m256d a =
+                _mm256_insertf128_pd(_mm256_castpd128_pd256(at(h, k)), at(h + 2, k), 1);
+            const __m256d b =
+                _mm256_insertf128_pd(_mm256_castpd128_pd256(at(h + 1, k)), at(h + 3, k), 1);
+            _mm256_store_pd(P.x[k] + h, _mm256_unpacklo_pd(a, b));
+            _mm256_store_pd(P.y[k] + h, _mm256_unpackhi_pd(a, b));
+        }
+    }
+}
+
+// store_block_state with AVX2: per 4 lanes a 4 x 4 transpose of the lane vectors a, b, c, d into
+// the 4 records (a_l, b_l, c_l, d_l), contiguous at out, by 4 unpacks, 4 lane permutes and 4
+// stores instead of 16 scalar stores.
+FDEM_JOINT_AVX2_TARGET [[gnu::always_inline]] inline void store_records_avx2(
+    double* out, const double* a, const double* b, const double* c, const double* d) {
+    for (int h = 0; h < kLanes; h += 4) {
+        const __m256d va = _mm256_load_pd(a + h), vb = _mm256_load_pd(b + h);
+        const __m256d vc = _mm256_load_pd(c + h), vd = _mm256_load_pd(d + h);
+        const __m256d t0 = _mm256_unpacklo_pd(va, vb);  // a0 b0 a2 b2
+        const __m256d t1 = _mm256_unpackhi_pd(va, vb);  // a1 b1 a3 b3
+        const __m256d t2 = _mm256_unpacklo_pd(vc, vd);  // c0 d0 c2 d2
+        const __m256d t3 = _mm256_unpackhi_pd(vc, vd);  // c1 d1 c3 d3
+        double* o = out + 4 * h;
+        _mm256_storeu_pd(o, _mm256_permute2f128_pd(t0, t2, 0x20));
+        _mm256_storeu_pd(o + 4, _mm256_permute2f128_pd(t1, t3, 0x20));
+        _mm256_storeu_pd(o + 8, _mm256_permute2f128_pd(t0, t2, 0x31));
+        _mm256_storeu_pd(o + 12, _mm256_permute2f128_pd(t1, t3, 0x31));
+    }
+}
+
+template <bool kEnergy>
+FDEM_JOINT_AVX2_TARGET bool block_law_avx2(const Joints& J, JointState& s, const Vec2* __restrict x,
+                                           int32_t j0, Block& B) {
+    int32_t law;
+    if (!block_qualifies(J, s, j0, law)) return false;
+    BlockPositions P;
+    gather_positions_avx2(J, x, j0, P);
+    load_block_state(s, j0, P);
+    if (!block_core<kEnergy>(J, J.laws[static_cast<size_t>(law)], P, j0, B)) return false;
+    store_records_avx2(s.f_prev[static_cast<size_t>(j0)].data(), B.f0x, B.f0y, B.f1x, B.f1y);
+    store_records_avx2(s.d_prev[static_cast<size_t>(j0)].data(), B.dax, B.day, B.dbx, B.dby);
+    return true;
+}
 #endif
 
 using BlockFn = bool (*)(const Joints&, JointState&, const Vec2* __restrict, int32_t, Block&);
@@ -494,8 +557,17 @@ void choose_path(detail::JointPath p) {
             choose_path(detail::JointPath::Portable);
 #endif
             break;
+        case detail::JointPath::Avx2:
+#ifdef FDEM_JOINT_AVX512
+            g_block[0] = &block_law_avx2<false>;
+            g_block[1] = &block_law_avx2<true>;
+#else
+            choose_path(detail::JointPath::Portable);
+#endif
+            break;
         case detail::JointPath::Auto:
             choose_path(detail::joint_avx512_supported() ? detail::JointPath::Avx512
+                        : detail::joint_avx2_supported() ? detail::JointPath::Avx2
                                                          : detail::JointPath::Portable);
             break;
     }
@@ -605,6 +677,15 @@ namespace detail {
 bool joint_avx512_supported() {
 #ifdef FDEM_JOINT_AVX512
     static const bool ok = __builtin_cpu_supports("avx512f");
+    return ok;
+#else
+    return false;
+#endif
+}
+
+bool joint_avx2_supported() {
+#ifdef FDEM_JOINT_AVX512
+    static const bool ok = __builtin_cpu_supports("avx2");
     return ok;
 #else
     return false;

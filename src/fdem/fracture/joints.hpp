@@ -45,12 +45,15 @@ JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, 
 namespace detail {
 
 /// Which code computes blocks of 8 intact elastic joints in joint_forces (same bits on every
-/// path): Auto (the default) picks Avx512 when the CPU has AVX-512F, else Portable; Scalar turns
-/// the blocked path off. For tests and benchmarks; not thread-safe against a running kernel.
-enum class JointPath { Auto, Scalar, Portable, Avx512 };
+/// path): Auto (the default) picks Avx512 when the CPU has AVX-512F, else Avx2 when it has AVX2,
+/// else Portable (baseline SSE2); Scalar turns the blocked path off. For tests and benchmarks; not
+/// thread-safe against a running kernel.
+enum class JointPath { Auto, Scalar, Portable, Avx512, Avx2 };
 void set_joint_path(JointPath p);
 /// true when this build has the AVX-512 variant and the CPU runs it.
 bool joint_avx512_supported();
+/// true when this build has the AVX2 variant and the CPU runs it.
+bool joint_avx2_supported();
 
 }  // namespace detail
 

@@ -562,6 +562,7 @@ TEST(Joints, BlockedPathSameBits) {
     EXPECT_EQ(ref.blocked, 0);
     std::vector<detail::JointPath> paths = {detail::JointPath::Portable};
     if (detail::joint_avx512_supported()) paths.push_back(detail::JointPath::Avx512);
+    if (detail::joint_avx2_supported()) paths.push_back(detail::JointPath::Avx2);
     for (const auto path : paths) {
         for (const int threads : {1, 2}) {
             const Run o = run(path, threads);
