@@ -32,13 +32,19 @@ struct NodeArrays {
     const Vec2* __restrict x0;
 };
 
-/// Which node-update kernel step() uses: Auto = AVX-512 when the CPU has it, Portable = the
-/// plain loop. Bitwise the same x, v and energies; Portable exists so that tests can compare
-/// (tests/unit/integrate/node_update_simd_test.cpp). Process-wide; not while a step runs.
-enum class NodeKernel { Auto, Portable };
+/// Which node-update kernel step() uses: Auto = AVX-512 when the CPU has it, else AVX2 when it
+/// has that, else the plain loop; Portable = the plain loop; Avx2 = the AVX2 kernel (when the CPU
+/// has AVX2, even with AVX-512, so tests reach it everywhere). Bitwise the same x, v and energies;
+/// Portable and Avx2 exist so that tests can compare (tests/unit/integrate/node_update_simd_test
+/// .cpp). Process-wide; not while a step runs.
+enum class NodeKernel { Auto, Portable, Avx2 };
 void set_node_kernel(NodeKernel k);
 /// true when step() runs the AVX-512 node update.
 bool node_update_uses_avx512();
+/// true when step() runs the AVX2 node update.
+bool node_update_uses_avx2();
+/// true when the CPU runs the AVX2 node update (NodeKernel::Avx2 then selects it).
+bool node_update_avx2_available();
 
 namespace detail {
 
@@ -50,6 +56,11 @@ namespace detail {
 /// damping power always is: it is integrated every step). Only call when the CPU has AVX-512F.
 void node_block_avx512(const NodeArrays& a, const NodeUpdate& u, bool gravity, bool damped,
                        bool energy, int32_t begin, int32_t end, Real* sums);
+
+/// node_block_avx512 with AVX2, 4 nodes per instruction (same bits). Only call when the CPU has
+/// AVX2.
+void node_block_avx2(const NodeArrays& a, const NodeUpdate& u, bool gravity, bool damped,
+                     bool energy, int32_t begin, int32_t end, Real* sums);
 
 }  // namespace detail
 }  // namespace fdem

@@ -141,6 +141,7 @@ void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2*
     const Real* __restrict inv_mass = m.node_inv_mass.data();
     const Vec2* __restrict x0 = m.node_x0.data();
     const bool simd = node_update_uses_avx512();
+    const bool avx2 = !simd && node_update_uses_avx2();
     const NodeArrays arrays{x, v, f, mass, inv_mass, x0};
 #pragma omp parallel for schedule(static) if (end_node - first_node >= kMinParallelNodes)
     for (NodeId blk = 0; blk < n_blocks; ++blk) {
@@ -148,6 +149,12 @@ void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2*
         const NodeId block_end = std::min(nn, block_begin + kNodeBlock);
         if (simd) {  // the whole block in one call, partials per group
             detail::node_block_avx512(
+                arrays, u, kGravity, kDamped, kEnergy, block_begin, block_end,
+                part + kNodeSlots * static_cast<size_t>(block_begin / kNodeGroup));
+            continue;
+        }
+        if (avx2) {  // the same with 4 nodes per instruction
+            detail::node_block_avx2(
                 arrays, u, kGravity, kDamped, kEnergy, block_begin, block_end,
                 part + kNodeSlots * static_cast<size_t>(block_begin / kNodeGroup));
             continue;
@@ -208,6 +215,17 @@ void apply_kicks(const Model& m, State& s) {
 
 void set_node_kernel(NodeKernel k) {
     g_node_kernel = k;
+}
+
+bool node_update_avx2_available() {
+    static const bool supported = __builtin_cpu_supports("avx2");
+    return supported;
+}
+
+bool node_update_uses_avx2() {
+    return (g_node_kernel == NodeKernel::Auto && !node_update_uses_avx512() &&
+            node_update_avx2_available()) ||
+           (g_node_kernel == NodeKernel::Avx2 && node_update_avx2_available());
 }
 
 bool node_update_uses_avx512() {
