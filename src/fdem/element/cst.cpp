@@ -4,9 +4,9 @@
 // one body, so the material constants are hoisted out of it and fixed bodies never enter it;
 // the viscous branch is a template parameter decided per chunk. Chunks are colored so that a
 // color's chunks share no node and can scatter their forces concurrently without atomics, in an
-// order that does not depend on the thread count. On CPUs with AVX-512, the CST triangles
-// (elastic and viscous) go to the kernel in element/cst_simd.cpp (8 triangles per instruction,
-// bitwise the same results); other CPUs (and CstKernel::Portable) use the loops below.
+// order that does not depend on the thread count. On CPUs with AVX-512 or AVX2, the CST triangles
+// (elastic and viscous) go to the kernels in element/cst_simd.cpp (8 triangles per group, bitwise
+// the same results); other CPUs (and CstKernel::Portable) use the loops below.
 #include "element/cst.hpp"
 
 #include "fdem/exact_sum.hpp"
@@ -161,6 +161,18 @@ void elastic_range(const Model& m, const Vec2* __restrict x, Vec2* __restrict f,
     out.min_jacobian_tri = min_t;
 }
 
+bool cst_avx2_supported() {
+    static const bool ok = __builtin_cpu_supports("avx2");
+    return ok;
+}
+
+// the AVX2 kernel (element/cst_simd.cpp): Auto without AVX-512, or Avx2
+bool use_avx2() {
+    return (g_kernel == CstKernel::Auto && !detail::cst_avx512_supported() &&
+            cst_avx2_supported()) ||
+           (g_kernel == CstKernel::Avx2 && cst_avx2_supported());
+}
+
 // Dispatch a range of triangles of one material on whether any of them is viscous.
 void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
                     bool with_energy, ElementPass& out) {
@@ -178,6 +190,9 @@ void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId
         // (element/cst_simd.cpp)
         detail::cst_range_avx512(m, x, v, f, begin, end, mt.lambda, mt.mu, viscous, with_energy,
                                  out);
+    } else if (use_avx2()) {
+        // the same with AVX2, 4 triangles per instruction (element/cst_simd.cpp)
+        detail::cst_range_avx2(m, x, v, f, begin, end, mt.lambda, mt.mu, viscous, with_energy, out);
     } else if (viscous && with_energy) {
         element_range<true, true>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
     } else if (viscous) {
@@ -231,7 +246,12 @@ void set_cst_kernel(CstKernel k) {
 }
 
 const char* cst_kernel_name() {
-    return g_kernel == CstKernel::Auto && detail::cst_avx512_supported() ? "avx512" : "portable";
+    if (g_kernel == CstKernel::Auto && detail::cst_avx512_supported()) return "avx512";
+    return use_avx2() ? "avx2" : "portable";
+}
+
+bool cst_avx2_available() {
+    return cst_avx2_supported();
 }
 
 ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin,

@@ -86,15 +86,19 @@ ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSub
 ElementSchedule build_element_schedule(const Model& m);
 
 /// Kernel for the CST triangles (elastic and viscous): Auto = the AVX-512 kernel when the CPU has
-/// it (element/cst_simd.cpp), else the portable one; Portable = always the portable one. Both
-/// give bitwise the same forces, smallest J, strain energy and viscous power; Portable exists so
-/// that tests can compare them (tests/unit/element/cst_simd_test.cpp). Process-wide; do not change
-/// it while a pass runs.
-enum class CstKernel { Auto, Portable };
+/// it (element/cst_simd.cpp), else the AVX2 kernel when it has AVX2 (the same file), else the
+/// portable loops (baseline SSE2); Portable = always the portable loops; Avx2 = the AVX2 kernel
+/// even on a CPU with AVX-512 (when it has AVX2), so that tests reach it on every CPU. All give
+/// bitwise the same forces, smallest J, strain energy and viscous power
+/// (tests/unit/element/cst_simd_test.cpp). Process-wide; do not change it while a pass runs.
+enum class CstKernel { Auto, Portable, Avx2 };
 void set_cst_kernel(CstKernel k);
 
-/// The kernel the next pass uses for CST triangles: "avx512" or "portable".
+/// The kernel the next pass uses for CST triangles: "avx512", "avx2" or "portable".
 const char* cst_kernel_name();
+
+/// true when this build has the AVX2 loops and the CPU runs them.
+bool cst_avx2_available();
 
 /// Deformation gradient F = Ds Dm^-1 of triangle t (theory eq. 3.1).
 inline Mat2 deformation_gradient(const Model& m, const Vec2* x, TriId t) {

@@ -337,6 +337,302 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, Tr
     out.min_jacobian_tri = min_t;
 }
 
+// ---------------------------------------------------------------------------------------------
+// The same kernel for CPUs with AVX2 but without AVX-512 (AMD Zen 1-3, many desktop Intel CPUs):
+// 8 triangles per group as two 4-wide halves (V8 below), the same expressions in the same order
+// (no FMA: the target adds none and the build has -ffp-contract=off), so the same bits as the
+// portable kernel and the AVX-512 one. Only the data movement differs: corners and Dm^-1 are
+// de-interleaved per half by unpacks and 128-bit lane permutes, masks are vectors (blends).
+
+#define FDEM_AVX2 __attribute__((target("avx2")))
+
+// 8 lanes as two __m256d: lanes 0-3 in lo, 4-7 in hi
+struct V8 {
+    __m256d lo, hi;
+};
+
+FDEM_AVX2 inline V8 operator+(V8 a, V8 b) {
+    return {_mm256_add_pd(a.lo, b.lo), _mm256_add_pd(a.hi, b.hi)};
+}
+FDEM_AVX2 inline V8 operator-(V8 a, V8 b) {
+    return {_mm256_sub_pd(a.lo, b.lo), _mm256_sub_pd(a.hi, b.hi)};
+}
+FDEM_AVX2 inline V8 operator*(V8 a, V8 b) {
+    return {_mm256_mul_pd(a.lo, b.lo), _mm256_mul_pd(a.hi, b.hi)};
+}
+FDEM_AVX2 inline V8 operator/(V8 a, V8 b) {
+    return {_mm256_div_pd(a.lo, b.lo), _mm256_div_pd(a.hi, b.hi)};
+}
+FDEM_AVX2 inline V8 splat(double a) {
+    return {_mm256_set1_pd(a), _mm256_set1_pd(a)};
+}
+// -a: the sign bit flipped, as the portable unary minus
+FDEM_AVX2 inline V8 negate(V8 a) {
+    const __m256d s = _mm256_set1_pd(-0.0);
+    return {_mm256_xor_pd(a.lo, s), _mm256_xor_pd(a.hi, s)};
+}
+FDEM_AVX2 inline V8 load8(const double* p) {
+    return {_mm256_loadu_pd(p), _mm256_loadu_pd(p + 4)};
+}
+FDEM_AVX2 inline void store8(double* p, V8 a) {
+    _mm256_store_pd(p, a.lo);
+    _mm256_store_pd(p + 4, a.hi);
+}
+// b in the lanes of the masks (mlo, mhi: all bits set), a elsewhere
+FDEM_AVX2 inline V8 blend8(V8 a, V8 b, __m256d mlo, __m256d mhi) {
+    return {_mm256_blendv_pd(a.lo, b.lo, mlo), _mm256_blendv_pd(a.hi, b.hi, mhi)};
+}
+// lanes where a > 0 (ordered: NaN is not), as a bit mask of 8
+FDEM_AVX2 inline unsigned positive_mask(V8 a) {
+    const __m256d z = _mm256_setzero_pd();
+    return static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(a.lo, z, _CMP_GT_OQ))) |
+           (static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(a.hi, z, _CMP_GT_OQ))) << 4);
+}
+
+// x and y of corner k of triangles 4h .. 4h + 3 (node ids q[3 i + k]): a = (p0, p2), b = (p1, p3)
+// as Vec2 pairs, so the unpacks give x and y in lane order
+FDEM_AVX2 inline void load_corner_half(const double* xd, const int32_t* q, int k, int h, __m256d& X,
+                                       __m256d& Y) {
+    const auto at = [&](int i) {
+        return _mm_loadu_pd(xd + 2 * static_cast<ptrdiff_t>(q[3 * (4 * h + i) + k]));
+    };
+    const __m256d a = _mm256_insertf128_pd(_mm256_castpd128_pd256(at(0)), at(2), 1);
+    const __m256d b = _mm256_insertf128_pd(_mm256_castpd128_pd256(at(1)), at(3), 1);
+    X = _mm256_unpacklo_pd(a, b);
+    Y = _mm256_unpackhi_pd(a, b);
+}
+
+FDEM_AVX2 inline void load_corner_avx2(const double* xd, const int32_t* q, int k, V8& X, V8& Y) {
+    load_corner_half(xd, q, k, 0, X.lo, Y.lo);
+    load_corner_half(xd, q, k, 1, X.hi, Y.hi);
+}
+
+// Dm^-1 of triangles 4h .. 4h + 3 (rows xx xy yx yy at dm + 16 h): a 4 x 4 transpose
+FDEM_AVX2 inline void load_dm_half(const double* dm, int h, __m256d& xx, __m256d& xy, __m256d& yx,
+                                   __m256d& yy) {
+    const double* p = dm + 16 * h;
+    const __m256d r0 = _mm256_loadu_pd(p), r1 = _mm256_loadu_pd(p + 4);
+    const __m256d r2 = _mm256_loadu_pd(p + 8), r3 = _mm256_loadu_pd(p + 12);
+    const __m256d t0 = _mm256_unpacklo_pd(r0, r1);  // xx0 xx1 yx0 yx1
+    const __m256d t1 = _mm256_unpackhi_pd(r0, r1);  // xy0 xy1 yy0 yy1
+    const __m256d t2 = _mm256_unpacklo_pd(r2, r3);  // xx2 xx3 yx2 yx3
+    const __m256d t3 = _mm256_unpackhi_pd(r2, r3);  // xy2 xy3 yy2 yy3
+    xx = _mm256_permute2f128_pd(t0, t2, 0x20);
+    yx = _mm256_permute2f128_pd(t0, t2, 0x31);
+    xy = _mm256_permute2f128_pd(t1, t3, 0x20);
+    yy = _mm256_permute2f128_pd(t1, t3, 0x31);
+}
+
+// the 8 Vec2 (fx[i], fy[i]) interleaved at out[0..15]
+FDEM_AVX2 inline void store_interleaved_avx2(double* out, V8 fx, V8 fy) {
+    const __m256d a = _mm256_unpacklo_pd(fx.lo, fy.lo), b = _mm256_unpackhi_pd(fx.lo, fy.lo);
+    const __m256d c = _mm256_unpacklo_pd(fx.hi, fy.hi), d = _mm256_unpackhi_pd(fx.hi, fy.hi);
+    _mm256_store_pd(out, _mm256_permute2f128_pd(a, b, 0x20));
+    _mm256_store_pd(out + 4, _mm256_permute2f128_pd(a, b, 0x31));
+    _mm256_store_pd(out + 8, _mm256_permute2f128_pd(c, d, 0x20));
+    _mm256_store_pd(out + 12, _mm256_permute2f128_pd(c, d, 0x31));
+}
+
+// f[node] += (v[0], v[1])
+FDEM_AVX2 inline void add_force_avx2(double* fd, int32_t node, const double* v) {
+    double* p = fd + 2 * static_cast<ptrdiff_t>(node);
+    _mm_storeu_pd(p, _mm_add_pd(_mm_loadu_pd(p), _mm_load_pd(v)));
+}
+
+// group() with V8: the same expressions, operation by operation
+template <bool kEnergy, bool kViscous>
+FDEM_AVX2 inline V8 group_avx2(const double* xd, const int32_t* q, const double* dm, double mu,
+                               double half_lambda, const ViscousIn& vi, double* fo, double* trc,
+                               double* pw) {
+    const V8 one = splat(1.0), half = splat(0.5);
+    V8 xa, ya, xb, yb, xc, yc;
+    load_corner_avx2(xd, q, 0, xa, ya);
+    load_corner_avx2(xd, q, 1, xb, yb);
+    load_corner_avx2(xd, q, 2, xc, yc);
+    V8 dxx, dxy, dyx, dyy;
+    load_dm_half(dm, 0, dxx.lo, dxy.lo, dyx.lo, dyy.lo);
+    load_dm_half(dm, 1, dxx.hi, dxy.hi, dyx.hi, dyy.hi);
+
+    // F = Ds Dm^-1, Ds = [xb - xa, xc - xa] (theory eq. 3.1); as Mat2 operator*
+    const V8 e1x = xb - xa, e1y = yb - ya;
+    const V8 e2x = xc - xa, e2y = yc - ya;
+    const V8 Fxx = e1x * dxx + e2x * dyx;
+    const V8 Fxy = e1x * dxy + e2x * dyy;
+    const V8 Fyx = e1y * dxx + e2y * dyx;
+    const V8 Fyy = e1y * dxy + e2y * dyy;
+    const V8 J = Fxx * Fyy - Fxy * Fyx;
+
+    // sigma = (mu/J)(B - I) + (lambda/2)(J - 1/J) I, B = F F^T (theory eq. 2.2, cauchy_stress)
+    const V8 Bxx = Fxx * Fxx + Fxy * Fxy;
+    const V8 Bxy = Fxx * Fyx + Fxy * Fyy;
+    const V8 Byy = Fyx * Fyx + Fyy * Fyy;
+    const V8 a = splat(mu) / J;
+    const V8 p = splat(half_lambda) * (J - one / J);
+    V8 sxx = a * (Bxx - one) + p;
+    V8 sxy = a * Bxy;
+    V8 syy = a * (Byy - one) + p;
+
+    if constexpr (kViscous) {
+        // viscous stress eta D (theory eq. 2.4), as the AVX-512 group
+        V8 vxa, vya, vxb, vyb, vxc, vyc;
+        load_corner_avx2(vi.vd, q, 0, vxa, vya);
+        load_corner_avx2(vi.vd, q, 1, vxb, vyb);
+        load_corner_avx2(vi.vd, q, 2, vxc, vyc);
+        const V8 inv = one / (e1x * e2y - e2x * e1y);
+        const V8 ixx = e2y * inv, ixy = negate(e2x) * inv;
+        const V8 iyx = negate(e1y) * inv, iyy = e1x * inv;
+        const V8 ubx = vxb - vxa, uby = vyb - vya;
+        const V8 ucx = vxc - vxa, ucy = vyc - vya;
+        const V8 Lxx = ubx * ixx + ucx * iyx;
+        const V8 Lxy = ubx * ixy + ucx * iyy;
+        const V8 Lyx = uby * ixx + ucy * iyx;
+        const V8 Lyy = uby * ixy + ucy * iyy;
+        const V8 Dxy = half * (Lxy + Lyx);
+        // sigma + eta D only in the lanes with eta > 0 (the portable branch)
+        const V8 eta = load8(vi.eta);
+        const __m256d z = _mm256_setzero_pd();
+        const __m256d vlo = _mm256_cmp_pd(eta.lo, z, _CMP_GT_OQ);
+        const __m256d vhi = _mm256_cmp_pd(eta.hi, z, _CMP_GT_OQ);
+        sxx = blend8(sxx, sxx + eta * Lxx, vlo, vhi);
+        sxy = blend8(sxy, sxy + eta * Dxy, vlo, vhi);
+        syy = blend8(syy, syy + eta * Lyy, vlo, vhi);
+        // J A0 eta ddot(D, D), ddot summed xx, xy, yx, yy (math.hpp)
+        const V8 dd = ((Lxx * Lxx + Dxy * Dxy) + Dxy * Dxy) + Lyy * Lyy;
+        store8(pw, ((J * load8(vi.area0)) * eta) * dd);
+    }
+
+    // f_i = 1/2 sigma n_i, n_i the scaled outward normal of the edge opposite i (theory eq. 3.3)
+    const V8 nx[3] = {yc - yb, ya - yc, yb - ya};
+    const V8 ny[3] = {xb - xc, xc - xa, xa - xb};
+    for (int k = 0; k < 3; ++k) {
+        const V8 fx = half * (sxx * nx[k] + sxy * ny[k]);
+        const V8 fy = half * (sxy * nx[k] + syy * ny[k]);
+        store_interleaved_avx2(fo + 16 * k, fx, fy);
+    }
+    if constexpr (kEnergy) {
+        // tr C in the order of trace_right_cauchy_green (theory eq. 2.1)
+        store8(trc, ((Fxx * Fxx + Fxy * Fxy) + Fyx * Fyx) + Fyy * Fyy);
+    }
+    return J;
+}
+
+// range() with group_avx2: the same blocks, scatter, smallest-J rule and energy sums
+template <bool kEnergy, bool kViscous>
+FDEM_AVX2 void range_avx2(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin,
+                          TriId end, Real lambda, Real mu, ElementPass& out) {
+    const auto* tn = reinterpret_cast<const int32_t*>(m.tri_nodes.data());
+    const auto* dmd = reinterpret_cast<const double*>(m.tri_dm_inv.data());
+    const Real* area0 = m.tri_area0.data();
+    const Real* eta = m.tri_eta.data();
+    const auto* vd = reinterpret_cast<const double*>(v);
+    const auto* xd = reinterpret_cast<const double*>(x);
+    auto* fd = reinterpret_cast<double*>(f);
+
+    constexpr int kBlock = 256;
+    alignas(64) double fo[3 * 2 * kLanes];
+    alignas(64) double jac[kEnergy ? kBlock : kLanes], trc[kEnergy ? kBlock : kLanes];
+    alignas(64) double wa[kEnergy ? kBlock : 1];
+    alignas(64) int32_t pad_q[3 * kLanes];
+    alignas(64) double pad_dm[4 * kLanes];
+    alignas(64) double pad_eta[kLanes], pad_area[kLanes], pw[kLanes];
+    Real energy = 0, power = 0;
+    Real min_j = out.min_jacobian;
+    TriId min_t = out.min_jacobian_tri;
+
+    for (TriId b0 = begin; b0 < end; b0 += kBlock) {
+        const TriId b1 = std::min<TriId>(end, b0 + kBlock);
+        for (TriId t0 = b0; t0 < b1; t0 += kLanes) {
+            const int n = static_cast<int>(std::min<TriId>(kLanes, b1 - t0));
+            const int32_t* q = tn + 3 * static_cast<ptrdiff_t>(t0);
+            const double* dm = dmd + 4 * static_cast<ptrdiff_t>(t0);
+            ViscousIn vi{vd, eta + t0, area0 + t0};
+            if (n < kLanes) {
+                // last group of the range: the missing lanes repeat its last triangle
+                for (int i = 0; i < kLanes; ++i) {
+                    const int src = std::min(i, n - 1);
+                    std::copy_n(q + 3 * src, 3, pad_q + 3 * i);
+                    std::copy_n(dm + 4 * src, 4, pad_dm + 4 * i);
+                    if constexpr (kViscous) {
+                        pad_eta[i] = eta[t0 + src];
+                        pad_area[i] = area0[t0 + src];
+                    }
+                }
+                q = pad_q;
+                dm = pad_dm;
+                vi.eta = pad_eta;
+                vi.area0 = pad_area;
+            }
+            double* jg = kEnergy ? jac + (t0 - b0) : jac;
+            const V8 J = group_avx2<kEnergy, kViscous>(xd, q, dm, mu, 0.5 * lambda, vi, fo,
+                                                       kEnergy ? trc + (t0 - b0) : trc, pw);
+            store8(jg, J);
+            if (n == kLanes && positive_mask(J) == 0xffu) {
+                // no inverted triangle: the first lane holding the group's smallest J is the one
+                // the triangle-order scan with a strict < would keep (min is exact: any order)
+                double gmin = jg[0];
+                for (int i = 1; i < kLanes; ++i)
+                    gmin = jg[i] < gmin ? jg[i] : gmin;
+                if (gmin < min_j) {
+                    int first = 0;
+                    while (jg[first] != gmin)
+                        ++first;
+                    min_j = gmin;
+                    min_t = t0 + first;
+                }
+                for (int i = 0; i < kLanes; ++i) {
+                    add_force_avx2(fd, q[3 * i], fo + 2 * i);
+                    add_force_avx2(fd, q[3 * i + 1], fo + 16 + 2 * i);
+                    add_force_avx2(fd, q[3 * i + 2], fo + 32 + 2 * i);
+                }
+                if constexpr (kViscous) {
+                    for (int i = 0; i < kLanes; ++i) {  // in triangle order, as the portable sum
+                        if (eta[t0 + i] > 0) power += pw[i];
+                    }
+                }
+                continue;
+            }
+            // as the portable kernel, triangle by triangle
+            for (int i = 0; i < n; ++i) {
+                const Real Ji = jg[i];
+                if (Ji < min_j) {
+                    min_j = Ji;
+                    min_t = t0 + i;
+                }
+                if (!(Ji > 0)) continue;  // inverted: reported by the caller, no force
+                if constexpr (kViscous) {
+                    if (eta[t0 + i] > 0) power += pw[i];
+                }
+                add_force_avx2(fd, q[3 * i], fo + 2 * i);
+                add_force_avx2(fd, q[3 * i + 1], fo + 16 + 2 * i);
+                add_force_avx2(fd, q[3 * i + 2], fo + 32 + 2 * i);
+            }
+        }
+        if constexpr (kEnergy) {
+            // A0 W, W = (mu/2)(tr C - 2 - 2 ln J) + (lambda/4)(J^2 - 1 - 2 ln J) (theory eq. 2.1):
+            // strain_energy_density operation by operation, as the AVX-512 kernel
+            const int nb = static_cast<int>(b1 - b0);
+            const Real hmu = 0.5 * mu, qlambda = 0.25 * lambda;
+            for (int i = 0; i < nb; ++i) {
+                const Real J = jac[i];
+                const Real L2 = 2.0 * (J > 0 ? std::log(J) : 0.0);
+                wa[i] =
+                    area0[b0 + i] * (hmu * ((trc[i] - 2.0) - L2) + qlambda * ((J * J - 1.0) - L2));
+            }
+            for (int i = 0; i < nb; ++i) {  // in triangle order; inverted triangles have none
+                if (jac[i] > 0) energy += wa[i];
+            }
+        }
+    }
+    if constexpr (kEnergy) out.strain_energy += energy;
+    if constexpr (kViscous) {
+        out.viscous_power += power;  // summed with or without the energy, as element_range
+    } else if constexpr (kEnergy) {
+        out.viscous_power += 0.0;  // as element_range<false, true>
+    }
+    out.min_jacobian = min_j;
+    out.min_jacobian_tri = min_t;
+}
+
 }  // namespace
 
 void cst_range_avx512(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
@@ -349,6 +645,19 @@ void cst_range_avx512(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, Tri
         range<true, false>(m, x, v, f, begin, end, lambda, mu, out);
     } else {
         range<false, false>(m, x, v, f, begin, end, lambda, mu, out);
+    }
+}
+
+void cst_range_avx2(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
+                    Real lambda, Real mu, bool viscous, bool with_energy, ElementPass& out) {
+    if (viscous && with_energy) {
+        range_avx2<true, true>(m, x, v, f, begin, end, lambda, mu, out);
+    } else if (viscous) {
+        range_avx2<false, true>(m, x, v, f, begin, end, lambda, mu, out);
+    } else if (with_energy) {
+        range_avx2<true, false>(m, x, v, f, begin, end, lambda, mu, out);
+    } else {
+        range_avx2<false, false>(m, x, v, f, begin, end, lambda, mu, out);
     }
 }
 

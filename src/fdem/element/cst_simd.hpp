@@ -1,4 +1,4 @@
-// SIMD kernel of the constant-strain triangle (docs/theory.md §2-3, docs/performance.md).
+// SIMD kernels of the constant-strain triangle (docs/theory.md §2-3, docs/performance.md).
 // Private to element/cst.cpp, which dispatches to it.
 #pragma once
 
@@ -17,5 +17,10 @@ bool cst_avx512_supported();
 /// bitwise the same. Only call when cst_avx512_supported().
 void cst_range_avx512(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
                       Real lambda, Real mu, bool viscous, bool with_energy, ElementPass& out);
+
+/// cst_range_avx512 for CPUs with AVX2: 8 triangles per group as two 4-wide halves, the same
+/// expressions, so the same bits. Only call when the CPU has AVX2.
+void cst_range_avx2(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
+                    Real lambda, Real mu, bool viscous, bool with_energy, ElementPass& out);
 
 }  // namespace fdem::detail

@@ -1,13 +1,16 @@
-// SIMD CST kernel (element/cst_simd.cpp): the forces, the strain energy, the smallest det F and
-// its triangle must be bitwise those of the portable kernel (element/cst.cpp), for full groups of
-// 8 triangles, the partial group at the end of a range, inverted triangles and whole steps.
+// SIMD CST kernels (element/cst_simd.cpp, AVX-512; the AVX2 loops of element/cst.cpp): the forces,
+// the strain energy, the smallest det F and its triangle must be bitwise those of the portable
+// kernel (element/cst.cpp), for full groups of 8 triangles, the partial group at the end of a
+// range, inverted triangles and whole steps.
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "element/cst.hpp"
@@ -26,6 +29,14 @@ struct KernelGuard {
 bool simd_available() {
     set_cst_kernel(CstKernel::Auto);
     return std::string(cst_kernel_name()) != "portable";
+}
+
+// the SIMD kernels this CPU runs: Auto (AVX-512 or AVX2) and, where it has AVX2, the AVX2 one
+std::vector<CstKernel> simd_kernels() {
+    std::vector<CstKernel> k;
+    if (simd_available()) k.push_back(CstKernel::Auto);
+    if (cst_avx2_available()) k.push_back(CstKernel::Avx2);
+    return k;
 }
 
 using scenes::bits;
@@ -71,7 +82,8 @@ std::vector<Vec2> perturbed(const Model& m, Real amplitude, uint32_t seed) {
 }
 
 TEST(CstSimd, ForcesEnergyAndSmallestJMatchThePortableKernel) {
-    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    if (!simd_available())
+        GTEST_SKIP() << "no AVX-512 or AVX2 on this CPU: only the portable kernel runs";
     KernelGuard guard;
     // 2 * 37 * 37 = 2738 triangles: not a multiple of 8, so the last group is partial
     scenes::BlockOptions o;
@@ -81,15 +93,16 @@ TEST(CstSimd, ForcesEnergyAndSmallestJMatchThePortableKernel) {
     for (uint32_t seed : {1u, 2u, 3u}) {
         const std::vector<Vec2> x = perturbed(m, 0.1, seed);
         const Pass a = serial_pass(m, x, CstKernel::Portable);
-        const Pass b = serial_pass(m, x, CstKernel::Auto);
-        expect_same_bits(a, b);
+        for (const CstKernel k : simd_kernels())
+            expect_same_bits(a, serial_pass(m, x, k));
         EXPECT_GT(a.p.strain_energy, 0);
         EXPECT_GT(a.p.min_jacobian, 0);  // no inverted triangle at this amplitude
     }
 }
 
 TEST(CstSimd, InvertedTrianglesAndEveryRangeEndMatch) {
-    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    if (!simd_available())
+        GTEST_SKIP() << "no AVX-512 or AVX2 on this CPU: only the portable kernel runs";
     KernelGuard guard;
     scenes::BlockOptions o;
     o.num_tris = 800;
@@ -99,8 +112,11 @@ TEST(CstSimd, InvertedTrianglesAndEveryRangeEndMatch) {
     const std::vector<Vec2> x = perturbed(m, 0.6, 11);
     const Pass all = serial_pass(m, x, CstKernel::Portable);
     ASSERT_LT(all.p.min_jacobian, 0);  // the scene does hold inverted triangles
+    std::vector<CstKernel> kernels = {CstKernel::Portable};
+    for (const CstKernel k : simd_kernels())
+        kernels.push_back(k);
     for (TriId end = 1; end <= 40; ++end) {
-        for (CstKernel k : {CstKernel::Portable, CstKernel::Auto}) {
+        for (const CstKernel k : kernels) {
             set_cst_kernel(k);
             std::vector<Vec2> f(x.size());
             const std::vector<Vec2> v(x.size());
@@ -115,7 +131,43 @@ TEST(CstSimd, InvertedTrianglesAndEveryRangeEndMatch) {
             expect_same_bits({f_ref, p_ref}, {f, p});
         }
     }
-    expect_same_bits(all, serial_pass(m, x, CstKernel::Auto));
+    for (const CstKernel k : simd_kernels())
+        expect_same_bits(all, serial_pass(m, x, k));
+}
+
+// The AVX2 kernel (CstKernel::Avx2; Auto on CPUs with AVX2 but not AVX-512) against the portable
+// loops on a step without the energy (the chunked pass of a State with need_energy off, whose
+// portable path is the blocked elastic_range), inverted triangles included, on blocks whose sizes
+// leave partial groups
+TEST(CstSimd, Avx2PassWithoutEnergyMatchesThePortableKernel) {
+    if (!cst_avx2_available()) GTEST_SKIP() << "no AVX2 on this CPU";
+    KernelGuard guard;
+    for (const int64_t num_tris : {800, 2738, 20000}) {
+        scenes::BlockOptions o;
+        o.num_tris = num_tris;
+        const Model m = scenes::make_block(o);
+        for (const Real amplitude : {0.1, 0.6}) {
+            Pass r[2];
+            for (int k = 0; k < 2; ++k) {
+                set_cst_kernel(k == 0 ? CstKernel::Portable : CstKernel::Avx2);
+                EXPECT_STREQ(cst_kernel_name(), k == 0 ? "portable" : "avx2");
+                State s = make_state(m, 1e-6);
+                s.x = perturbed(m, amplitude, 7);
+                s.need_energy = false;
+                r[k].p = add_internal_forces(m, s);
+                r[k].f = s.f;
+            }
+            SCOPED_TRACE(testing::Message() << num_tris << " triangles, amplitude " << amplitude);
+            expect_same_bits(r[0], r[1]);
+            if (amplitude > 0.5) {
+                EXPECT_LT(r[0].p.min_jacobian, 0);  // inverted triangles were skipped alike
+            }
+            Real most = 0;
+            for (const Vec2& fi : r[0].f)
+                most = std::max(most, std::fabs(fi.x));
+            EXPECT_GT(most, 0);  // the pass did compute forces
+        }
+    }
 }
 
 // seeded random nodal velocities up to `amplitude` [m/s] in each component
@@ -144,7 +196,8 @@ Model viscous_block(int64_t num_tris) {
 }
 
 TEST(CstSimd, ViscousForcesEnergyPowerAndSmallestJMatchThePortableKernel) {
-    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    if (!simd_available())
+        GTEST_SKIP() << "no AVX-512 or AVX2 on this CPU: only the portable kernel runs";
     KernelGuard guard;
     const Model m = viscous_block(2738);  // last group partial
     ASSERT_NE(m.num_tris() % 8, 0);
@@ -152,8 +205,8 @@ TEST(CstSimd, ViscousForcesEnergyPowerAndSmallestJMatchThePortableKernel) {
         const std::vector<Vec2> x = perturbed(m, 0.1, seed);
         const std::vector<Vec2> v = random_velocities(x.size(), 0.5, seed + 100);
         const Pass a = serial_pass(m, x, CstKernel::Portable, v);
-        const Pass b = serial_pass(m, x, CstKernel::Auto, v);
-        expect_same_bits(a, b);
+        for (const CstKernel k : simd_kernels())
+            expect_same_bits(a, serial_pass(m, x, k, v));
         EXPECT_GT(a.p.viscous_power, 0);
         EXPECT_GT(a.p.min_jacobian, 0);
         // the viscous stress does change the forces (else the comparison would prove little)
@@ -163,7 +216,8 @@ TEST(CstSimd, ViscousForcesEnergyPowerAndSmallestJMatchThePortableKernel) {
 }
 
 TEST(CstSimd, ViscousInvertedTrianglesAndEveryRangeEndMatch) {
-    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    if (!simd_available())
+        GTEST_SKIP() << "no AVX-512 or AVX2 on this CPU: only the portable kernel runs";
     KernelGuard guard;
     const Model m = viscous_block(800);
     const std::vector<Vec2> x = perturbed(m, 0.6, 11);
@@ -171,18 +225,25 @@ TEST(CstSimd, ViscousInvertedTrianglesAndEveryRangeEndMatch) {
     const Pass all = serial_pass(m, x, CstKernel::Portable, v);
     ASSERT_LT(all.p.min_jacobian, 0);  // the scene does hold inverted triangles
     ASSERT_GT(all.p.viscous_power, 0);
+    std::vector<CstKernel> kernels = {CstKernel::Portable};
+    for (const CstKernel k : simd_kernels())
+        kernels.push_back(k);
     for (TriId begin : {0, 5, 93}) {
         for (TriId end = begin + 1; end <= begin + 40; ++end) {
-            Pass r[2];
-            for (int k = 0; k < 2; ++k) {
-                set_cst_kernel(k == 0 ? CstKernel::Portable : CstKernel::Auto);
-                r[k].f.assign(x.size(), Vec2{});
-                r[k].p = add_internal_forces(m, x.data(), v.data(), r[k].f.data(), begin, end);
+            std::vector<Pass> r;
+            for (const CstKernel k : kernels) {
+                set_cst_kernel(k);
+                Pass p;
+                p.f.assign(x.size(), Vec2{});
+                p.p = add_internal_forces(m, x.data(), v.data(), p.f.data(), begin, end);
+                r.push_back(std::move(p));
             }
-            expect_same_bits(r[0], r[1]);
+            for (size_t k = 1; k < r.size(); ++k)
+                expect_same_bits(r[0], r[k]);
         }
     }
-    expect_same_bits(all, serial_pass(m, x, CstKernel::Auto, v));
+    for (const CstKernel k : simd_kernels())
+        expect_same_bits(all, serial_pass(m, x, k, v));
 }
 
 // whole steps (parallel chunked pass, node update) give the same state hash and energies;
@@ -190,23 +251,30 @@ TEST(CstSimd, ViscousInvertedTrianglesAndEveryRangeEndMatch) {
 void expect_same_run(const Model& m, int steps, int threads, Real strain = 0) {
     KernelGuard guard;
     omp_set_num_threads(threads);
-    uint64_t hash[2];
-    Energy e[2];
-    for (int k = 0; k < 2; ++k) {
-        set_cst_kernel(k == 0 ? CstKernel::Portable : CstKernel::Auto);
+    // Auto (AVX-512 or AVX2 by the CPU) and, where the CPU has it, the AVX2 choice
+    std::vector<CstKernel> kernels = {CstKernel::Portable, CstKernel::Auto};
+    if (cst_avx2_available()) kernels.push_back(CstKernel::Avx2);
+    std::vector<uint64_t> hash;
+    std::vector<Energy> e;
+    for (const CstKernel k : kernels) {
+        set_cst_kernel(k);
         const State s = scenes::run_perturbed(m, steps, strain);
-        hash[k] = scenes::state_hash(s);
-        e[k] = s.energy;
+        hash.push_back(scenes::state_hash(s));
+        e.push_back(s.energy);
     }
-    EXPECT_EQ(hash[0], hash[1]);
-    EXPECT_EQ(bits(e[0].strain), bits(e[1].strain));
-    EXPECT_EQ(bits(e[0].kinetic), bits(e[1].kinetic));
-    EXPECT_EQ(bits(e[0].dissipated_viscous), bits(e[1].dissipated_viscous));
+    for (size_t k = 1; k < kernels.size(); ++k) {
+        SCOPED_TRACE(testing::Message() << "kernel " << static_cast<int>(kernels[k]));
+        EXPECT_EQ(hash[0], hash[k]);
+        EXPECT_EQ(bits(e[0].strain), bits(e[k].strain));
+        EXPECT_EQ(bits(e[0].kinetic), bits(e[k].kinetic));
+        EXPECT_EQ(bits(e[0].dissipated_viscous), bits(e[k].dissipated_viscous));
+    }
     EXPECT_GT(e[0].strain, 0);
 }
 
 TEST(CstSimd, BlockStepsAreBitwiseTheSame) {
-    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    if (!simd_available())
+        GTEST_SKIP() << "no AVX-512 or AVX2 on this CPU: only the portable kernel runs";
     scenes::BlockOptions o;
     o.num_tris = 20000;  // parallel pass (> 32 chunks)
     o.gravity = o.clamp = true;
@@ -216,7 +284,8 @@ TEST(CstSimd, BlockStepsAreBitwiseTheSame) {
 }
 
 TEST(CstSimd, ViscousBlockStepsAreBitwiseTheSame) {
-    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    if (!simd_available())
+        GTEST_SKIP() << "no AVX-512 or AVX2 on this CPU: only the portable kernel runs";
     scenes::BlockOptions o;
     o.num_tris = 20000;  // parallel pass (> 32 chunks)
     o.gravity = o.clamp = true;
@@ -227,7 +296,8 @@ TEST(CstSimd, ViscousBlockStepsAreBitwiseTheSame) {
 }
 
 TEST(CstSimd, ParticleBoxStepsAreBitwiseTheSame) {
-    if (!simd_available()) GTEST_SKIP() << "no AVX-512 on this CPU: only the portable kernel runs";
+    if (!simd_available())
+        GTEST_SKIP() << "no AVX-512 or AVX2 on this CPU: only the portable kernel runs";
     scenes::ParticleOptions o;
     o.nx = o.ny = 20;  // chunks of many 5-8 triangle bodies: partial groups everywhere; contact
     const Model m = scenes::make_particle_box(o);
