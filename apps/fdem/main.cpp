@@ -35,6 +35,8 @@
 #include <CLI/CLI.hpp>
 
 #include "contact/contact.hpp"
+#include "detect/broad_phase.hpp"
+#include "element/cst.hpp"
 #include "fdem/fdem.hpp"
 #include "fracture/joints.hpp"
 #include "integrate/node_update.hpp"
@@ -265,6 +267,14 @@ void print_summary(const fdem::Scenario& sc) {
     fmt::print("memory     {:.2f} MB (model + state, estimate; {:.0f} B per triangle)\n",
                memory_estimate(m) / 1e6,
                static_cast<double>(memory_estimate(m)) / std::max(1, m.num_tris()));
+    // the vector kernels this CPU runs (docs/architecture.md "Vector kernels"; the same bits on
+    // every path) and the threads: what a timing depends on
+    fmt::print("kernels    CST {}, node update {}, {}broad-phase scan {}; {} OpenMP thread(s)\n",
+               fdem::cst_kernel_name(), fdem::node_update_kernel_name(),
+               m.joints.num_joints() > 0
+                   ? fmt::format("joints {}, ", fdem::detail::joint_path_name())
+                   : std::string(),
+               fdem::broad_scan_kernel_name(), omp_get_max_threads());
     print_fracture(sc);
 
     // contact: which algorithm and why; which bodies it sees (two fixed bodies never interact)

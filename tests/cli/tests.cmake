@@ -89,6 +89,13 @@ add_test(NAME cli.check_prints_fracture
 set_tests_properties(cli.check_prints_fracture PROPERTIES LABELS input
   PASS_REGULAR_EXPRESSION "fracture   material \"rock\": 5 joints, h 0.004 \\.\\. 0.004 m \\(mean 0.004 m\\), h_max 0.1618 m \\(eq. 9.14\\)\n +at the mean h: o_p 1.6e-07 m, s_p 4.8e-07 m \\(eq. 9.4\\), o_r - o_p 1.294e-05 m \\(\"exact\", eq. 9.12\\)[^\n]*\n +mixed mode \"proportional\" \\(eq. 9.30: each softened traction scaled by its mode's share of the damage, blended in over K_w = 0.2\\)\n +l_ch = E G_I/f_t\\^2 = 0.025 m. E_eff = E/\\(1 \\+ c_m E/p\\) = 4.167e\\+10 Pa = 0.833 E, c_m = 3/2 \\+ p/\\(2 p_s\\) = 2 \\(eq. 9.6[^\n]*\ndt limits  elements [0-9.e+-]+ s, joints [0-9.e+-]+ s \\(eq. 9.16\\), contact none")
 
+# the vector kernels and the thread count (docs/output.md "Console output"); the "." stands for
+# the ";" of the line, which would split a CMake regex list
+add_test(NAME cli.check_prints_kernels
+         COMMAND fdem_cli check ${PROJECT_SOURCE_DIR}/examples/07_pull_apart/scenario.toml)
+set_tests_properties(cli.check_prints_kernels PROPERTIES LABELS input ENVIRONMENT OMP_NUM_THREADS=1
+  PASS_REGULAR_EXPRESSION "\nkernels    CST (avx512|avx2|portable), node update (avx512|avx2|portable), joints (avx512|avx2|portable|scalar), broad-phase scan (avx512|portable). 1 OpenMP thread\\(s\\)\n")
+
 # the same with p_s = p/2 = 2.5e11 Pa (tests/data/pull_apart_soft_shear.toml): s_p = 2 h c/p_s =
 # 9.6e-7 m, c_m = 3/2 + p/(2 p_s) = 2.5, E_eff/E = 1/(1 + 2.5/10) = 0.8 = 4e10 Pa
 add_test(NAME cli.check_prints_fracture_soft_shear

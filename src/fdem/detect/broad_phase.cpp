@@ -58,6 +58,10 @@ void clear_candidates(Candidates& out) {
 
 }  // namespace
 
+const char* broad_scan_kernel_name() {
+    return detail::scan_avx512_supported() ? "avx512" : "portable";
+}
+
 // Layout for speed (docs/performance.md): after the counting sort (stable: ascending sub-triangle
 // id within a cell) the centres, squared reaches (r + b)^2 and role keys (body, + kFixedKey if
 // fixed) of the sub-triangles are gathered into cell order (row-major cells, structure of

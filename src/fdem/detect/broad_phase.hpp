@@ -13,6 +13,10 @@ namespace fdem {
 /// always the portable loop (tests compare the two).
 enum class BroadKernel { Auto, Scalar };
 
+/// The circle scan find_candidates runs with BroadKernel::Auto: "avx512" or "portable" (printed
+/// by `fdem run`).
+const char* broad_scan_kernel_name();
+
 /// Rebuild the candidate list out of topology ct from current positions: x = real node positions,
 /// xv = virtual node positions (ContactState::xv). A couple (node j, sub-triangle tau) is accepted
 /// when is_contactor_for(body(tau), body(j)) and |x_j - c_tau| < r_tau + b, with c_tau the centroid

@@ -696,6 +696,15 @@ void set_joint_path(JointPath p) {
     choose_path(p);
 }
 
+const char* joint_path_name() {
+    if (g_block[0] == nullptr) return "scalar";
+#ifdef FDEM_JOINT_AVX512
+    if (g_block[0] == &block_law_avx512<false>) return "avx512";
+    if (g_block[0] == &block_law_avx2<false>) return "avx2";
+#endif
+    return "portable";
+}
+
 }  // namespace detail
 
 JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, std::span<Vec2> f,

@@ -55,6 +55,10 @@ bool joint_avx512_supported();
 /// true when this build has the AVX2 variant and the CPU runs it.
 bool joint_avx2_supported();
 
+/// The path joint_forces uses for blocks of intact joints: "avx512", "avx2", "portable" or
+/// "scalar" (printed by `fdem run`).
+const char* joint_path_name();
+
 }  // namespace detail
 
 /// Per-node Gershgorin row sum of the joint stiffness, sum over joints of max(p, p_s) (theory eq.

@@ -45,6 +45,8 @@ bool node_update_uses_avx512();
 bool node_update_uses_avx2();
 /// true when the CPU runs the AVX2 node update (NodeKernel::Avx2 then selects it).
 bool node_update_avx2_available();
+/// The node update step() runs: "avx512", "avx2" or "portable" (printed by `fdem run`).
+const char* node_update_kernel_name();
 
 namespace detail {
 

@@ -233,6 +233,10 @@ bool node_update_uses_avx512() {
     return g_node_kernel == NodeKernel::Auto && supported;
 }
 
+const char* node_update_kernel_name() {
+    return node_update_uses_avx512() ? "avx512" : node_update_uses_avx2() ? "avx2" : "portable";
+}
+
 namespace {
 
 // mark[i] != 0 as runs
