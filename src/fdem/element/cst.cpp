@@ -161,16 +161,11 @@ void elastic_range(const Model& m, const Vec2* __restrict x, Vec2* __restrict f,
     out.min_jacobian_tri = min_t;
 }
 
-bool cst_avx2_supported() {
-    static const bool ok = __builtin_cpu_supports("avx2");
-    return ok;
-}
-
 // the AVX2 kernel (element/cst_simd.cpp): Auto without AVX-512, or Avx2
 bool use_avx2() {
     return (g_kernel == CstKernel::Auto && !detail::cst_avx512_supported() &&
-            cst_avx2_supported()) ||
-           (g_kernel == CstKernel::Avx2 && cst_avx2_supported());
+            cst_avx2_available()) ||
+           (g_kernel == CstKernel::Avx2 && cst_avx2_available());
 }
 
 // Dispatch a range of triangles of one material on whether any of them is viscous.
@@ -251,7 +246,8 @@ const char* cst_kernel_name() {
 }
 
 bool cst_avx2_available() {
-    return cst_avx2_supported();
+    static const bool ok = __builtin_cpu_supports("avx2");
+    return ok;
 }
 
 ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin,

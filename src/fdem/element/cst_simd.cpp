@@ -64,6 +64,81 @@ struct ViscousIn {
     const double* area0;
 };
 
+// The scalar parts of a range, shared by the AVX-512 and AVX2 kernels (baseline SSE2 code without
+// a target attribute, so it inlines into either).
+
+// f[node] += (v[0], v[1])
+inline void add_force(double* fd, int32_t node, const double* v) {
+    double* p = fd + 2 * static_cast<ptrdiff_t>(node);
+    _mm_storeu_pd(p, _mm_add_pd(_mm_loadu_pd(p), _mm_load_pd(v)));
+}
+
+// the forces of lane i of a group (corner k at fo[16 k + 2 i]) added to its three nodes
+[[gnu::always_inline]] inline void add_lane_forces(double* fd, const int32_t* q, const double* fo,
+                                                   int i) {
+    add_force(fd, q[3 * i], fo + 2 * i);
+    add_force(fd, q[3 * i + 1], fo + 16 + 2 * i);
+    add_force(fd, q[3 * i + 2], fo + 32 + 2 * i);
+}
+
+// Last group of a range (n < kLanes triangles from t0): the missing lanes repeat its last triangle
+// (computed, unused); q, dm and vi then point at the padded copies.
+template <bool kViscous>
+[[gnu::always_inline]] inline void pad_group(int n, TriId t0, const Real* eta, const Real* area0,
+                                             const int32_t*& q, const double*& dm, ViscousIn& vi,
+                                             int32_t* pad_q, double* pad_dm, double* pad_eta,
+                                             double* pad_area) {
+    for (int i = 0; i < kLanes; ++i) {
+        const int src = std::min(i, n - 1);
+        std::copy_n(q + 3 * src, 3, pad_q + 3 * i);
+        std::copy_n(dm + 4 * src, 4, pad_dm + 4 * i);
+        if constexpr (kViscous) {
+            pad_eta[i] = eta[t0 + src];
+            pad_area[i] = area0[t0 + src];
+        }
+    }
+    q = pad_q;
+    dm = pad_dm;
+    vi.eta = pad_eta;
+    vi.area0 = pad_area;
+}
+
+// A whole group without an inverted triangle (its smallest J already taken): the forces in
+// triangle order and (kViscous) the viscous power of the lanes with eta > 0, as the portable sum.
+template <bool kViscous>
+[[gnu::always_inline]] inline void commit_group(double* fd, const int32_t* q, const double* fo,
+                                                const Real* eta, TriId t0, const double* pw,
+                                                Real& power) {
+    for (int i = 0; i < kLanes; ++i)
+        add_lane_forces(fd, q, fo, i);
+    if constexpr (kViscous) {
+        for (int i = 0; i < kLanes; ++i) {
+            if (eta[t0 + i] > 0) power += pw[i];
+        }
+    }
+}
+
+// Lanes [0, n) of a group, as the portable kernel, triangle by triangle: the smallest J (jg) with
+// a strict <, no force from an inverted triangle (reported by the caller), the viscous power.
+template <bool kViscous>
+[[gnu::always_inline]] inline void commit_checked(int n, double* fd, const int32_t* q,
+                                                  const double* fo, const double* jg,
+                                                  const Real* eta, TriId t0, const double* pw,
+                                                  Real& power, Real& min_j, TriId& min_t) {
+    for (int i = 0; i < n; ++i) {
+        const Real Ji = jg[i];
+        if (Ji < min_j) {
+            min_j = Ji;
+            min_t = t0 + i;
+        }
+        if (!(Ji > 0)) continue;
+        if constexpr (kViscous) {
+            if (eta[t0 + i] > 0) power += pw[i];
+        }
+        add_lane_forces(fd, q, fo, i);
+    }
+}
+
 // x and y of corner k (0, 1, 2) of the 8 triangles whose node ids are q[3 i + k].
 FDEM_AVX512 inline void load_corner(const double* xd, const int32_t* q, int k, __m512d& X,
                                     __m512d& Y) {
@@ -91,12 +166,6 @@ FDEM_AVX512 inline void store_interleaved(double* out, __m512d fx, __m512d fy) {
                     _mm512_permutex2var_pd(fx, _mm512_setr_epi64(0, 8, 1, 9, 2, 10, 3, 11), fy));
     _mm512_store_pd(out + 8,
                     _mm512_permutex2var_pd(fx, _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15), fy));
-}
-
-// f[node] += (v[0], v[1])
-FDEM_AVX512 inline void add_force(double* fd, int32_t node, const double* v) {
-    double* p = fd + 2 * static_cast<ptrdiff_t>(node);
-    _mm_storeu_pd(p, _mm_add_pd(_mm_loadu_pd(p), _mm_load_pd(v)));
 }
 
 // Forces of 8 triangles with node ids q[0..23] and Dm^-1 dm[0..31] (8 Mat2, row-major): the
@@ -244,21 +313,7 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, Tr
             const double* dm = dmd + 4 * static_cast<ptrdiff_t>(t0);
             ViscousIn vi{vd, eta + t0, area0 + t0};
             if (n < kLanes) {
-                // last group of the range: the missing lanes repeat its last triangle (computed,
-                // unused)
-                for (int i = 0; i < kLanes; ++i) {
-                    const int src = std::min(i, n - 1);
-                    std::copy_n(q + 3 * src, 3, pad_q + 3 * i);
-                    std::copy_n(dm + 4 * src, 4, pad_dm + 4 * i);
-                    if constexpr (kViscous) {
-                        pad_eta[i] = eta[t0 + src];
-                        pad_area[i] = area0[t0 + src];
-                    }
-                }
-                q = pad_q;
-                dm = pad_dm;
-                vi.eta = pad_eta;
-                vi.area0 = pad_area;
+                pad_group<kViscous>(n, t0, eta, area0, q, dm, vi, pad_q, pad_dm, pad_eta, pad_area);
             }
             double* jg = kEnergy ? jac + (t0 - b0) : jac;
             const __m512d J =
@@ -274,33 +329,10 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, Tr
                     min_j = gmin;
                     min_t = t0 + std::countr_zero(static_cast<unsigned>(at));
                 }
-                for (int i = 0; i < kLanes; ++i) {
-                    add_force(fd, q[3 * i], fo + 2 * i);
-                    add_force(fd, q[3 * i + 1], fo + 16 + 2 * i);
-                    add_force(fd, q[3 * i + 2], fo + 32 + 2 * i);
-                }
-                if constexpr (kViscous) {
-                    for (int i = 0; i < kLanes; ++i) {  // in triangle order, as the portable sum
-                        if (eta[t0 + i] > 0) power += pw[i];
-                    }
-                }
+                commit_group<kViscous>(fd, q, fo, eta, t0, pw, power);
                 continue;
             }
-            // as the portable kernel, triangle by triangle
-            for (int i = 0; i < n; ++i) {
-                const Real Ji = jg[i];
-                if (Ji < min_j) {
-                    min_j = Ji;
-                    min_t = t0 + i;
-                }
-                if (!(Ji > 0)) continue;  // inverted: reported by the caller, no force
-                if constexpr (kViscous) {
-                    if (eta[t0 + i] > 0) power += pw[i];
-                }
-                add_force(fd, q[3 * i], fo + 2 * i);
-                add_force(fd, q[3 * i + 1], fo + 16 + 2 * i);
-                add_force(fd, q[3 * i + 2], fo + 32 + 2 * i);
-            }
+            commit_checked<kViscous>(n, fd, q, fo, jg, eta, t0, pw, power, min_j, min_t);
         }
         if constexpr (kEnergy) {
             const int nb = static_cast<int>(b1 - b0);
@@ -433,12 +465,6 @@ FDEM_AVX2 inline void store_interleaved_avx2(double* out, V8 fx, V8 fy) {
     _mm256_store_pd(out + 12, _mm256_permute2f128_pd(c, d, 0x31));
 }
 
-// f[node] += (v[0], v[1])
-FDEM_AVX2 inline void add_force_avx2(double* fd, int32_t node, const double* v) {
-    double* p = fd + 2 * static_cast<ptrdiff_t>(node);
-    _mm_storeu_pd(p, _mm_add_pd(_mm_loadu_pd(p), _mm_load_pd(v)));
-}
-
 // group() with V8: the same expressions, operation by operation
 template <bool kEnergy, bool kViscous>
 FDEM_AVX2 inline V8 group_avx2(const double* xd, const int32_t* q, const double* dm, double mu,
@@ -547,20 +573,7 @@ FDEM_AVX2 void range_avx2(const Model& m, const Vec2* x, const Vec2* v, Vec2* f,
             const double* dm = dmd + 4 * static_cast<ptrdiff_t>(t0);
             ViscousIn vi{vd, eta + t0, area0 + t0};
             if (n < kLanes) {
-                // last group of the range: the missing lanes repeat its last triangle
-                for (int i = 0; i < kLanes; ++i) {
-                    const int src = std::min(i, n - 1);
-                    std::copy_n(q + 3 * src, 3, pad_q + 3 * i);
-                    std::copy_n(dm + 4 * src, 4, pad_dm + 4 * i);
-                    if constexpr (kViscous) {
-                        pad_eta[i] = eta[t0 + src];
-                        pad_area[i] = area0[t0 + src];
-                    }
-                }
-                q = pad_q;
-                dm = pad_dm;
-                vi.eta = pad_eta;
-                vi.area0 = pad_area;
+                pad_group<kViscous>(n, t0, eta, area0, q, dm, vi, pad_q, pad_dm, pad_eta, pad_area);
             }
             double* jg = kEnergy ? jac + (t0 - b0) : jac;
             const V8 J = group_avx2<kEnergy, kViscous>(xd, q, dm, mu, 0.5 * lambda, vi, fo,
@@ -579,33 +592,10 @@ FDEM_AVX2 void range_avx2(const Model& m, const Vec2* x, const Vec2* v, Vec2* f,
                     min_j = gmin;
                     min_t = t0 + first;
                 }
-                for (int i = 0; i < kLanes; ++i) {
-                    add_force_avx2(fd, q[3 * i], fo + 2 * i);
-                    add_force_avx2(fd, q[3 * i + 1], fo + 16 + 2 * i);
-                    add_force_avx2(fd, q[3 * i + 2], fo + 32 + 2 * i);
-                }
-                if constexpr (kViscous) {
-                    for (int i = 0; i < kLanes; ++i) {  // in triangle order, as the portable sum
-                        if (eta[t0 + i] > 0) power += pw[i];
-                    }
-                }
+                commit_group<kViscous>(fd, q, fo, eta, t0, pw, power);
                 continue;
             }
-            // as the portable kernel, triangle by triangle
-            for (int i = 0; i < n; ++i) {
-                const Real Ji = jg[i];
-                if (Ji < min_j) {
-                    min_j = Ji;
-                    min_t = t0 + i;
-                }
-                if (!(Ji > 0)) continue;  // inverted: reported by the caller, no force
-                if constexpr (kViscous) {
-                    if (eta[t0 + i] > 0) power += pw[i];
-                }
-                add_force_avx2(fd, q[3 * i], fo + 2 * i);
-                add_force_avx2(fd, q[3 * i + 1], fo + 16 + 2 * i);
-                add_force_avx2(fd, q[3 * i + 2], fo + 32 + 2 * i);
-            }
+            commit_checked<kViscous>(n, fd, q, fo, jg, eta, t0, pw, power, min_j, min_t);
         }
         if constexpr (kEnergy) {
             // A0 W, W = (mu/2)(tr C - 2 - 2 ln J) + (lambda/4)(J^2 - 1 - 2 ln J) (theory eq. 2.1):

@@ -141,7 +141,7 @@ void update_nodes(const Model& m, const NodeUpdate& u, Vec2* __restrict x, Vec2*
     const Real* __restrict inv_mass = m.node_inv_mass.data();
     const Vec2* __restrict x0 = m.node_x0.data();
     const bool simd = node_update_uses_avx512();
-    const bool avx2 = !simd && node_update_uses_avx2();
+    const bool avx2 = node_update_uses_avx2();  // never with simd (Auto prefers AVX-512)
     const NodeArrays arrays{x, v, f, mass, inv_mass, x0};
 #pragma omp parallel for schedule(static) if (end_node - first_node >= kMinParallelNodes)
     for (NodeId blk = 0; blk < n_blocks; ++blk) {
