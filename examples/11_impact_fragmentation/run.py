@@ -160,7 +160,7 @@ def ring_radii():
 RING_RI, RING_RO = ring_radii()  # m: ring.geo (inner, outer radius)
 RING_R = 0.5 * (RING_RI + RING_RO)  # m: mean radius
 RING_RATES = [30.0, 100.0, 300.0]  # 1/s: hoop strain rates of the ring study (--ring, --full)
-# --quick --ring (CTest validation.impact_quick): the two lower rates on ring.toml's 0.625 mm mesh,
+# --quick --ring (CTest validation.impact_ring_quick, label full): the two lower rates on ring.toml's 0.625 mm mesh,
 # ~95 s on one core (1.25 mm, two elements through the thickness, would take 15 s but resolves
 # neither the cohesive zone nor the thickness: README)
 RING_RATES_QUICK = [30.0, 100.0]

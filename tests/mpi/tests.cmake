@@ -42,23 +42,41 @@ endforeach()
 
 # T1: `mpirun -np P fdem run` is bitwise the one-process run (state hash, history.csv,
 # bodies.csv, last frame) for P = 1..4, ~400 steps of: a cantilever under gravity (one body
-# cut between processes), frictional contact (03), 2 500 particles (04: ~5 000 steps, so that
+# cut between processes), frictional contact (03), 2 500 particles (04's raster, above: ~5 000 steps, so that
 # contacts across the cuts occur; without the contactor ghosts its frames differ), composite
 # elements (05),
 # follower pressure with mass damping (06), jointed disc between platens (08), and a ring that
 # fractures into 62 fragments (11: 170 joints broken by 1e-4 s)
 set(mpi_out ${CMAKE_CURRENT_BINARY_DIR}/mpi_out)
 set(ex ${PROJECT_SOURCE_DIR}/examples)
+# Example 04's 2 500 particles as a .msh (raster_scenario.sh: example 12's make_raster.py at
+# N = 50 in particles.geo's order, example 12's scenario template), written once for every
+# particle test below (fixture mpi_raster50): Gmsh meshing particles.geo took ~4 s in each of
+# the ~60 processes those tests start, two thirds of this label's time
+set(raster50 ${mpi_out}/raster50)
+add_test(NAME mpi.setup.raster50
+         COMMAND ${mpi_dir}/raster_scenario.sh ${PROJECT_SOURCE_DIR} ${raster50} 50)
+set_tests_properties(mpi.setup.raster50 PROPERTIES LABELS mpi FIXTURES_SETUP mpi_raster50
+                     PASS_REGULAR_EXPRESSION "OK: ")
+# the scenario each case below runs, by example folder: the raster for 04
+foreach(name 08_brazilian_disc 11_impact_fragmentation)
+  set(scenario_${name} ${ex}/${name}/scenario.toml)
+endforeach()
+set(scenario_04_particles ${raster50}/scenario.toml)
 foreach(case "01_cantilever:0.008" "03_contact_slide:0.002" "04_particles:2e-3"
         "05_composite:0.002" "06_pressurised_ring:0.03" "08_brazilian_disc:4e-6"
         "11_impact_fragmentation:1e-4")
   string(REPLACE ":" ";" case "${case}")
   list(GET case 0 name)
   list(GET case 1 end)
+  set(scenario ${ex}/${name}/scenario.toml)
+  if(name STREQUAL "04_particles")
+    set(scenario ${scenario_04_particles})
+  endif()
   add_test(NAME mpi.same_as_serial.${name}
            COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
                    ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                   ${ex}/${name}/scenario.toml ${mpi_out}/${name} "1 2 3 4" --end-time ${end})
+                   ${scenario} ${mpi_out}/${name} "1 2 3 4" --end-time ${end})
   set_tests_properties(mpi.same_as_serial.${name} PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
                        PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
 endforeach()
@@ -88,7 +106,7 @@ foreach(part "random:4" "ids:3")
   add_test(NAME mpi.same_as_serial.partition_${how}
            COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
                    ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                   ${ex}/04_particles/scenario.toml ${mpi_out}/partition_${how} "${np}"
+                   ${raster50}/scenario.toml ${mpi_out}/partition_${how} "${np}"
                    --end-time 1e-3 --partition ${how})
   set_tests_properties(mpi.same_as_serial.partition_${how} PROPERTIES LABELS mpi TIMEOUT 300
                        PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
@@ -109,7 +127,7 @@ foreach(case "04_rcb:04_particles:3:rcb:1e-3" "04_random:04_particles:4:random:1
   add_test(NAME mpi.same_as_serial.rebalance_${name}
            COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
                    ${mpi_dir}/rebalance.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                   ${ex}/${example}/scenario.toml ${mpi_out}/rebalance_${name} "${np}" ${how}
+                   ${scenario_${example}} ${mpi_out}/rebalance_${name} "${np}" ${how}
                    --end-time ${end})
   set_tests_properties(mpi.same_as_serial.rebalance_${name} PROPERTIES LABELS mpi TIMEOUT 300
                        PROCESSORS 2 PASS_REGULAR_EXPRESSION
@@ -126,7 +144,7 @@ foreach(case "04_particles:1e-3:4e-4:2 3 4" "08_brazilian_disc:4e-6:2e-6:3")
   add_test(NAME mpi.same_checkpoint.${name}
            COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
                    ${mpi_dir}/same_checkpoint.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                   ${ex}/${name}/scenario.toml ${mpi_out}/checkpoint_${name} "${nps}" ${end}
+                   ${scenario_${name}} ${mpi_out}/checkpoint_${name} "${nps}" ${end}
                    ${every})
   set_tests_properties(mpi.same_checkpoint.${name} PROPERTIES LABELS mpi TIMEOUT 300
                        PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: the serial checkpoint")
@@ -201,7 +219,7 @@ set_tests_properties(mpi.restart_on_another_process_count PROPERTIES LABELS mpi 
 add_test(NAME mpi.restart_on_another_process_count_rebalancing
          COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
                  ${mpi_dir}/restart_other_count.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                 ${ex}/04_particles/scenario.toml ${mpi_out}/restart_rebalancing 5e-4 1e-3
+                 ${raster50}/scenario.toml ${mpi_out}/restart_rebalancing 5e-4 1e-3
                  --rebalance-every 1 --imbalance 1)
 set_tests_properties(mpi.restart_on_another_process_count_rebalancing PROPERTIES LABELS mpi
                      TIMEOUT 300 PASS_REGULAR_EXPRESSION
@@ -218,9 +236,9 @@ set_tests_properties(mpi.signal_to_one_process_stops_all PROPERTIES LABELS mpi T
 # step: its rows equal the partition.csv of the run, for Zoltan's RCB (numbered alike on one and
 # on P processes), contiguous ids and random owners, with contact records (04 to 0.3 ms), support
 # slots (kick_load) and without ghost lists (08: joints, x and v all-gathered)
-foreach(case "04_rcb:${ex}/04_particles/scenario.toml:2 3 4:rcb:3e-4"
-        "04_random:${ex}/04_particles/scenario.toml:4:random:3e-4"
-        "04_ids:${ex}/04_particles/scenario.toml:3:ids:3e-4"
+foreach(case "04_rcb:${raster50}/scenario.toml:2 3 4:rcb:3e-4"
+        "04_random:${raster50}/scenario.toml:4:random:3e-4"
+        "04_ids:${raster50}/scenario.toml:3:ids:3e-4"
         "kick_load:${mpi_dir}/kick_load.toml:3:rcb:2e-4"
         "08_joints:${ex}/08_brazilian_disc/scenario.toml:2:rcb:2e-6")
   string(REPLACE ":" ";" case "${case}")
@@ -253,3 +271,13 @@ foreach(case "history:2" "checkpoint:3")
   set_tests_properties(mpi.same_failure.output_${kind} PROPERTIES LABELS mpi TIMEOUT 200
                        PASS_REGULAR_EXPRESSION "OK: an output error of process 0 stops every")
 endforeach()
+
+# every particle test reads the raster written by mpi.setup.raster50
+set_tests_properties(mpi.same_as_serial.04_particles mpi.same_as_serial.partition_random
+                     mpi.same_as_serial.partition_ids mpi.same_as_serial.rebalance_04_rcb
+                     mpi.same_as_serial.rebalance_04_random mpi.same_as_serial.rebalance_04_ids
+                     mpi.same_checkpoint.04_particles
+                     mpi.restart_on_another_process_count_rebalancing
+                     mpi.decompose_matches_run.04_rcb mpi.decompose_matches_run.04_random
+                     mpi.decompose_matches_run.04_ids
+                     PROPERTIES FIXTURES_REQUIRED mpi_raster50)
