@@ -41,6 +41,7 @@
 #include "fracture/joints.hpp"
 #include "integrate/node_update.hpp"
 #include "parallel/decompose.hpp"
+#include "parallel/mesh_broadcast.hpp"
 
 namespace {
 
@@ -361,7 +362,10 @@ const fdem::Comm* g_comm = nullptr;
 
 int run(const RunOptions& opt) {
     using clock = std::chrono::steady_clock;
-    fdem::Scenario sc = fdem::load_scenario(opt.scenario);
+    // a distributed run: process 0 reads (meshes) each mesh file once and broadcasts it
+    fdem::Scenario sc =
+        fdem::load_scenario(opt.scenario, g_comm != nullptr ? fdem::broadcast_mesh_reader(*g_comm)
+                                                            : fdem::MeshReader{});
     if (opt.end_time_given) {
         sc.run.end_time = opt.end_time;
         fdem::check_step_count(sc.run, {"--end-time", 0, 0}, "--end-time");

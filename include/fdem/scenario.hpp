@@ -2,6 +2,7 @@
 // Every key is documented in docs/scenario.md.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -87,9 +88,16 @@ Real planned_steps(const RunSettings& run);
 void check_step_count(const RunSettings& run, const SourceLocation& where, const std::string& key,
                       const std::string& source_line = {});
 
+/// How a scenario's mesh files are read: read_mesh(path, mesh_size, order, limits) when empty.
+/// A distributed run passes one that reads on process 0 and broadcasts the mesh
+/// (parallel/mesh_broadcast.hpp), so that P processes do not mesh the same .geo P times.
+using MeshReader =
+    std::function<MeshData(const std::string& path, Real mesh_size, int order, const MeshLimits&)>;
+
 /// Read, validate and build a scenario. Relative mesh paths are resolved against the scenario's
 /// folder. Throws InputError (file:line:column, key, value, expectation) on any bad input.
-Scenario load_scenario(const std::string& path);
+/// read_meshes (optional): reads each mesh file instead of read_mesh.
+Scenario load_scenario(const std::string& path, const MeshReader& read_meshes = {});
 
 /// Meshes given in memory, by name (e.g. built from arrays by the Python module's ModelBuilder).
 using MeshStore = std::map<std::string, MeshData>;
@@ -100,6 +108,7 @@ using MeshStore = std::map<std::string, MeshData>;
 /// other values are file paths as usual.
 Scenario load_scenario_from_string(const std::string& text, const std::string& name,
                                    const std::string& base_dir = ".",
-                                   const MeshStore* meshes = nullptr);
+                                   const MeshStore* meshes = nullptr,
+                                   const MeshReader& read_meshes = {});
 
 }  // namespace fdem

@@ -207,6 +207,14 @@ foreach(case "penetration:2:1" "crush:3:1" "bad_load:2:2")
   set_tests_properties(mpi.same_failure.${name} PROPERTIES LABELS mpi TIMEOUT 120
                        PASS_REGULAR_EXPRESSION "OK: the same failure")
 endforeach()
+# ... and a mesh error, which only process 0 meets (it alone reads the meshes and broadcasts
+# them, parallel/mesh_broadcast.hpp): exit 2 with the serial message on all three processes
+add_test(NAME mpi.same_failure.bad_mesh
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/same_failure.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${mpi_dir}/bad_mesh.toml ${mpi_out}/fail_bad_mesh 3 2)
+set_tests_properties(mpi.same_failure.bad_mesh PROPERTIES LABELS mpi TIMEOUT 120
+                     PASS_REGULAR_EXPRESSION "OK: the same failure")
 # T4: a checkpoint written by 2 processes restarts on 3 and on 1 with the uninterrupted hash
 add_test(NAME mpi.restart_on_another_process_count
          COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}

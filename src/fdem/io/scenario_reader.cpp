@@ -173,8 +173,9 @@ std::vector<std::string> group_names(const MeshData& mesh) {
 
 class ScenarioReader {
 public:
-    ScenarioReader(const SourceText& src, std::string base_dir, const MeshStore* memory)
-        : src_(src), base_dir_(std::move(base_dir)), memory_(memory) {}
+    ScenarioReader(const SourceText& src, std::string base_dir, const MeshStore* memory,
+                   const MeshReader& read_meshes)
+        : src_(src), base_dir_(std::move(base_dir)), memory_(memory), read_meshes_(read_meshes) {}
 
     Scenario read(const toml::table& root) {
         Scenario sc;
@@ -490,7 +491,8 @@ private:
         lm.size = size;
         lm.order = order;
         try {
-            lm.data = read_mesh(path, size, order, limits);
+            lm.data = read_meshes_ ? read_meshes_(path, size, order, limits)
+                                   : read_mesh(path, size, order, limits);
         } catch (const InputError& e) {
             if (e.key() != "max_triangles") throw;
             throw InputError(f.location("mesh_size"), f.full_key("mesh_size"),
@@ -1918,6 +1920,7 @@ private:
     const SourceText& src_;
     std::string base_dir_;
     const MeshStore* memory_ = nullptr;  ///< meshes given in memory (may be null)
+    const MeshReader& read_meshes_;      ///< reads a mesh file (read_mesh when empty)
     SourceLocation dt_loc_;
     SourceLocation end_time_loc_;
     SourceLocation interval_loc_;
@@ -2035,7 +2038,8 @@ void check_step_count(const RunSettings& run, const SourceLocation& where, const
 }
 
 Scenario load_scenario_from_string(const std::string& text, const std::string& name,
-                                   const std::string& base_dir, const MeshStore* meshes) {
+                                   const std::string& base_dir, const MeshStore* meshes,
+                                   const MeshReader& read_meshes) {
     const SourceText src(name, text);
     toml::table root;
     try {
@@ -2046,11 +2050,11 @@ Scenario load_scenario_from_string(const std::string& text, const std::string& n
         throw InputError({name, line, col}, "",
                          fmt::format("TOML syntax error: {}", e.description()), src.line(line));
     }
-    ScenarioReader reader(src, base_dir, meshes);
+    ScenarioReader reader(src, base_dir, meshes, read_meshes);
     return reader.read(root);
 }
 
-Scenario load_scenario(const std::string& path) {
+Scenario load_scenario(const std::string& path, const MeshReader& read_meshes) {
     std::error_code dir_ec;
     if (fs::is_directory(path, dir_ec)) {
         throw InputError(
@@ -2073,7 +2077,7 @@ Scenario load_scenario(const std::string& path) {
     if (base.empty()) {
         base = ".";
     }
-    return load_scenario_from_string(text.str(), path, base);
+    return load_scenario_from_string(text.str(), path, base, nullptr, read_meshes);
 }
 
 }  // namespace fdem

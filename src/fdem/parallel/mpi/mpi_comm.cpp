@@ -184,7 +184,12 @@ void MpiComm::broadcast(std::string& text, int root) const {
     uint64_t n = text.size();
     MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm_);
     text.resize(n);
-    if (n > 0) MPI_Bcast(text.data(), static_cast<int>(n), MPI_CHAR, root, comm_);
+    // in pieces of at most 1 GiB: MPI counts are int (a mesh of 10^8 triangles is ~2 GB)
+    constexpr uint64_t kPiece = uint64_t{1} << 30;
+    for (uint64_t at = 0; at < n; at += kPiece) {
+        MPI_Bcast(text.data() + at, static_cast<int>(std::min(kPiece, n - at)), MPI_CHAR, root,
+                  comm_);
+    }
 }
 
 void MpiComm::barrier() const {
