@@ -61,7 +61,7 @@ set_tests_properties(validation.impact_quick PROPERTIES LABELS validation TIMEOU
 # core of a 2.6 GHz Zen 4): mean fragment length within x1.5 of the cohesive-model fit
 # (docs/theory.md §9.8; measured 0.73 / 0.97 with the default joint law, 0.92 / 0.94 with the
 # spec's), energy within 1 % of KE0 (0.30 / 0.070 %), mass. Label full (the default suite's time,
-# docs/performance.md "Suite time"); scripts/validate runs the ring at 30, 100 and 300 1/s.
+# docs/performance.md "Stop 44"); scripts/validate runs the ring at 30, 100 and 300 1/s.
 add_test(NAME validation.impact_ring_quick
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/examples/11_impact_fragmentation/run.py
            --quick --ring --fdem $<TARGET_FILE:fdem_cli>
@@ -82,7 +82,7 @@ set_tests_properties(validation.bending_quick PROPERTIES LABELS validation TIMEO
 # default joint law, mixed_mode = "proportional" (docs/theory.md §9.3b, §9.3d): spec V6's work of
 # fracture G_I +- 15 %, which the spec's law ("independent") misses on this mesh (1.248 G_I;
 # 1.072 G_I measured with the default, K_w = 0.2, theory §9.3d). ~2.3 min on one core of a
-# 2.6 GHz Zen 4: label full (the default suite's time, docs/performance.md "Suite time");
+# 2.6 GHz Zen 4: label full (the default suite's time, docs/performance.md "Stop 44");
 # scripts/validate runs it (run.py --full) with the aligned beams' work of fracture.
 add_test(NAME validation.bending_unstructured
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/examples/10_three_point_bending/run.py

@@ -42,8 +42,8 @@ endforeach()
 
 # T1: `mpirun -np P fdem run` is bitwise the one-process run (state hash, history.csv,
 # bodies.csv, last frame) for P = 1..4, ~400 steps of: a cantilever under gravity (one body
-# cut between processes), frictional contact (03), 2 500 particles (04's raster, above: ~5 000 steps, so that
-# contacts across the cuts occur; without the contactor ghosts its frames differ), composite
+# cut between processes), frictional contact (03), 2 500 particles (04 as the raster below:
+# ~5 000 steps, so that contacts across the cuts occur; without the contactor ghosts its frames differ), composite
 # elements (05),
 # follower pressure with mass damping (06), jointed disc between platens (08), and a ring that
 # fractures into 62 fragments (11: 170 joints broken by 1e-4 s)
@@ -59,7 +59,8 @@ add_test(NAME mpi.setup.raster50
 set_tests_properties(mpi.setup.raster50 PROPERTIES LABELS mpi FIXTURES_SETUP mpi_raster50
                      PASS_REGULAR_EXPRESSION "OK: ")
 # the scenario each case below runs, by example folder: the raster for 04
-foreach(name 08_brazilian_disc 11_impact_fragmentation)
+foreach(name 01_cantilever 03_contact_slide 05_composite 06_pressurised_ring 08_brazilian_disc
+        11_impact_fragmentation)
   set(scenario_${name} ${ex}/${name}/scenario.toml)
 endforeach()
 set(scenario_04_particles ${raster50}/scenario.toml)
@@ -69,14 +70,10 @@ foreach(case "01_cantilever:0.008" "03_contact_slide:0.002" "04_particles:2e-3"
   string(REPLACE ":" ";" case "${case}")
   list(GET case 0 name)
   list(GET case 1 end)
-  set(scenario ${ex}/${name}/scenario.toml)
-  if(name STREQUAL "04_particles")
-    set(scenario ${scenario_04_particles})
-  endif()
   add_test(NAME mpi.same_as_serial.${name}
            COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
                    ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                   ${scenario} ${mpi_out}/${name} "1 2 3 4" --end-time ${end})
+                   ${scenario_${name}} ${mpi_out}/${name} "1 2 3 4" --end-time ${end})
   set_tests_properties(mpi.same_as_serial.${name} PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
                        PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
 endforeach()
@@ -106,7 +103,7 @@ foreach(part "random:4" "ids:3")
   add_test(NAME mpi.same_as_serial.partition_${how}
            COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
                    ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                   ${raster50}/scenario.toml ${mpi_out}/partition_${how} "${np}"
+                   ${scenario_04_particles} ${mpi_out}/partition_${how} "${np}"
                    --end-time 1e-3 --partition ${how})
   set_tests_properties(mpi.same_as_serial.partition_${how} PROPERTIES LABELS mpi TIMEOUT 300
                        PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
@@ -227,7 +224,7 @@ set_tests_properties(mpi.restart_on_another_process_count PROPERTIES LABELS mpi 
 add_test(NAME mpi.restart_on_another_process_count_rebalancing
          COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
                  ${mpi_dir}/restart_other_count.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                 ${raster50}/scenario.toml ${mpi_out}/restart_rebalancing 5e-4 1e-3
+                 ${scenario_04_particles} ${mpi_out}/restart_rebalancing 5e-4 1e-3
                  --rebalance-every 1 --imbalance 1)
 set_tests_properties(mpi.restart_on_another_process_count_rebalancing PROPERTIES LABELS mpi
                      TIMEOUT 300 PASS_REGULAR_EXPRESSION
@@ -244,9 +241,9 @@ set_tests_properties(mpi.signal_to_one_process_stops_all PROPERTIES LABELS mpi T
 # step: its rows equal the partition.csv of the run, for Zoltan's RCB (numbered alike on one and
 # on P processes), contiguous ids and random owners, with contact records (04 to 0.3 ms), support
 # slots (kick_load) and without ghost lists (08: joints, x and v all-gathered)
-foreach(case "04_rcb:${raster50}/scenario.toml:2 3 4:rcb:3e-4"
-        "04_random:${raster50}/scenario.toml:4:random:3e-4"
-        "04_ids:${raster50}/scenario.toml:3:ids:3e-4"
+foreach(case "04_rcb:${scenario_04_particles}:2 3 4:rcb:3e-4"
+        "04_random:${scenario_04_particles}:4:random:3e-4"
+        "04_ids:${scenario_04_particles}:3:ids:3e-4"
         "kick_load:${mpi_dir}/kick_load.toml:3:rcb:2e-4"
         "08_joints:${ex}/08_brazilian_disc/scenario.toml:2:rcb:2e-6")
   string(REPLACE ":" ";" case "${case}")

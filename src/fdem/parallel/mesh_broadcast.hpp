@@ -1,4 +1,4 @@
-// Meshes of a distributed run read once (issue #15, docs/parallel.md "Loading"): process 0 reads
+// Meshes of a distributed run read once (issue #15, docs/parallel.md "Running on a cluster"): process 0 reads
 // each mesh file of the scenario (Gmsh meshes a .geo there) and broadcasts it, bit for bit, to
 // the other processes, instead of every process meshing the same .geo or reading the same .msh.
 #pragma once
