@@ -123,6 +123,33 @@ bool renumber_spatially(Model& m, std::vector<int32_t>* node_new_out) {
         for (NodeId& n : jn)
             n = node_new[static_cast<size_t>(n)];
     }
+    // the joints in the order of their node 0 (a node of triangle A at the joint's edge, whose
+    // id now follows the Morton curve): chunks of consecutive joints lie in one region (the
+    // kernel's gathers stay local, and a distributed run's processes share few chunks,
+    // docs/parallel.md "Joints"); they were in the order of the mesh's triangle ids
+    if (!m.joints.nodes.empty()) {
+        Joints& J = m.joints;
+        const size_t nj = J.nodes.size();
+        std::vector<int32_t> order(nj);  // new joint k = old joint order[k]
+        std::iota(order.begin(), order.end(), 0);
+        std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
+            return J.nodes[static_cast<size_t>(a)][0] < J.nodes[static_cast<size_t>(b)][0];
+        });
+        std::vector<int32_t> joint_new(nj);
+        for (size_t k = 0; k < nj; ++k)
+            joint_new[static_cast<size_t>(order[k])] = static_cast<int32_t>(k);
+        const auto apply = [&](auto& a) {
+            auto old = a;
+            for (size_t k = 0; k < nj; ++k)
+                a[k] = old[static_cast<size_t>(order[k])];
+        };
+        apply(J.nodes);
+        apply(J.length0);
+        apply(J.law);
+        for (int32_t& j : m.prebroken_joints)
+            j = joint_new[static_cast<size_t>(j)];
+        std::sort(m.prebroken_joints.begin(), m.prebroken_joints.end());
+    }
     for (BoundaryCondition& bc : m.bcs) {
         for (NodeId& n : bc.nodes)
             n = node_new[static_cast<size_t>(n)];

@@ -337,6 +337,35 @@ TEST(FractureBuild, RenumberedBodyKeepsJoints) {
     }
 }
 
+// After the spatial renumbering the joints follow it (ordered by node 0, whose ids follow the
+// Morton curve: each chunk of kJointChunk joints lies in one region, docs/parallel.md "Joints";
+// in the mesh's triangle order they are not sorted by the new ids), and a pre-broken joint is
+// still the one on its edge.
+TEST(FractureBuild, RenumberedJointsFollowTheMortonOrder) {
+    const int nx = 50, ny = 42;  // 4200 triangles
+    const MeshData mesh = make_rectangle_mesh(0, 0, 1, 0.84, nx, ny);
+    BodyOptions opt = fracture_options();
+    // a pre-broken edge at y = 0.4, x in [0.4, 0.42]
+    opt.prebroken_edges = {{20 * (nx + 1) + 20, 20 * (nx + 1) + 21}};
+    Model m = jointed_material();
+    add_bodies(m, mesh, all_tris(mesh), opt);
+    const int32_t joints_before = m.joints.num_joints();
+    finalize_model(m);
+    expect_consistent(m);
+    ASSERT_EQ(m.joints.num_joints(), joints_before);
+    bool sorted = true;
+    for (size_t j = 1; j < m.joints.nodes.size(); ++j)
+        sorted = sorted && m.joints.nodes[j - 1][0] < m.joints.nodes[j][0];
+    EXPECT_TRUE(sorted);
+    ASSERT_EQ(m.prebroken_joints.size(), 1u);
+    const auto& n = m.joints.nodes[static_cast<size_t>(m.prebroken_joints[0])];
+    const Vec2 a = m.node_x0[static_cast<size_t>(n[0])], b = m.node_x0[static_cast<size_t>(n[1])];
+    EXPECT_NEAR(std::min(a.x, b.x), 0.4, 1e-12);
+    EXPECT_NEAR(std::max(a.x, b.x), 0.42, 1e-12);
+    EXPECT_NEAR(a.y, 0.4, 1e-12);
+    EXPECT_NEAR(b.y, 0.4, 1e-12);
+}
+
 // stable_time_step of a jointed body (theory eq. 9.21): the largest omega^2 of M^-1 (K_e + K_j),
 // by power iteration with the element and joint kernels' own forces about the reference state,
 // stays below (2/dt)^2; the minimum of the element and joint bounds would not bound it.
