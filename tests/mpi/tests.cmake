@@ -86,6 +86,21 @@ add_test(NAME mpi.same_as_serial.impact_independent
                  ${mpi_out}/impact_independent "2 3" --end-time 5e-5)
 set_tests_properties(mpi.same_as_serial.impact_independent PROPERTIES LABELS mpi TIMEOUT 300
                      PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+# the joints run by their owners (JointSubset, docs/parallel.md "Joints"): a ring of 5 joint
+# chunks fracturing (20 joints broken by 3e-5 s), by RCB on 2 and 3 processes and by a random
+# owner per node group on 4 (every chunk then shared: ranges of joints run by several processes)
+foreach(part "rcb:2 3" "random:4")
+  string(REPLACE ":" ";" part "${part}")
+  list(GET part 0 rule)
+  list(GET part 1 nps)
+  add_test(NAME mpi.same_as_serial.joint_chunks_${rule}
+           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                   ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                   ${mpi_dir}/impact_fine.toml ${mpi_out}/joint_chunks_${rule} "${nps}"
+                   --end-time 3e-5 --partition ${rule})
+  set_tests_properties(mpi.same_as_serial.joint_chunks_${rule} PROPERTIES LABELS mpi
+                       TIMEOUT 300 PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+endforeach()
 # Ghosts (spec D6): a kick, a follower pressure and a support reaction, whose nodes each
 # process reads beyond its own
 add_test(NAME mpi.same_as_serial.kick_load_support

@@ -607,12 +607,11 @@ template <bool kEnergy, bool kScatter>
     }
 }
 
+// Joints [begin, end) in joint order, their sums into out (blocks of kLanes from begin: any
+// start gives the same bits, the blocked and the scalar path agree)
 template <bool kEnergy, bool kScatter, bool kMixed>
-void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* __restrict f,
-               int32_t c, int64_t step) {
-    const int32_t begin = c * kJointChunk;
-    const int32_t end = std::min(J.num_joints(), begin + kJointChunk);
-    ChunkOut out;
+void run_range(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* __restrict f,
+               int32_t begin, int32_t end, int64_t step, ChunkOut& out) {
     const auto scalar = [&](int32_t j) {
         Vec2 f0, f1;
         const bool loaded = one_joint<kEnergy, kMixed>(J, s, x, j, step, f0, f1, out);
@@ -643,6 +642,15 @@ void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
     }
     for (; j < end; ++j)
         scalar(j);
+}
+
+template <bool kEnergy, bool kScatter, bool kMixed>
+void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* __restrict f,
+               int32_t c, int64_t step) {
+    const int32_t begin = c * kJointChunk;
+    const int32_t end = std::min(J.num_joints(), begin + kJointChunk);
+    ChunkOut out;
+    run_range<kEnergy, kScatter, kMixed>(J, s, x, f, begin, end, step, out);
     Real* slot = s.chunk_sums.data() + kSlots * static_cast<size_t>(c);
     slot[0] = out.work;
     slot[1] = out.energy;
@@ -650,6 +658,65 @@ void run_chunk(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
     slot[3] = out.softening;
     slot[4] = out.bad;
     slot[5] = out.blocked;
+}
+
+// entry k of a JointSubset: its chunk whole (the chunk's sums in its slots) or its ranges
+template <bool kEnergy, bool kScatter, bool kMixed>
+void run_entry(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* __restrict f,
+               const JointSubset& sub, size_t k, int64_t step) {
+    if (sub.counts[k]) {
+        run_chunk<kEnergy, kScatter, kMixed>(J, s, x, f, sub.chunks[k], step);
+        return;
+    }
+    ChunkOut out;  // (another process sums this chunk)
+    for (int32_t r = sub.range_begin[k]; r < sub.range_begin[k + 1]; ++r) {
+        const auto& [b, e] = sub.ranges[static_cast<size_t>(r)];
+        run_range<kEnergy, kScatter, kMixed>(J, s, x, f, b, e, step, out);
+    }
+}
+
+template <bool kScatter>
+void run_entry(const Joints& J, JointState& s, const Vec2* x, Vec2* f, const JointSubset& sub,
+               size_t k, int64_t step, bool energy) {
+    const bool mixed = !s.dn_max.empty();
+    if (energy) {
+        if (mixed)
+            run_entry<true, kScatter, true>(J, s, x, f, sub, k, step);
+        else
+            run_entry<true, kScatter, false>(J, s, x, f, sub, k, step);
+    } else {
+        if (mixed)
+            run_entry<false, kScatter, true>(J, s, x, f, sub, k, step);
+        else
+            run_entry<false, kScatter, false>(J, s, x, f, sub, k, step);
+    }
+}
+
+// node gather_node[g] adds its joints' forces in joint order (entries ascending in j),
+// skipping broken joints as the scatter does
+inline void gather_joint_forces(const Joints& J, const JointState& s, Vec2* __restrict fp,
+                                int32_t g) {
+    Vec2 acc = fp[J.gather_node[g]];
+    for (int32_t q = J.gather_begin[g]; q < J.gather_begin[g + 1]; ++q) {
+        const int32_t e = J.gather_entry[q];
+        const int32_t j = e >> 2;
+        if (s.status[j] == JointStatus::Broken) continue;  // as the scatter
+        switch (e & 3) {
+            case 0:
+                acc += s.jf[j][0];
+                break;
+            case 1:
+                acc += s.jf[j][1];
+                break;
+            case 2:
+                acc -= s.jf[j][1];
+                break;
+            default:
+                acc -= s.jf[j][0];
+                break;
+        }
+    }
+    fp[J.gather_node[g]] = acc;
 }
 
 template <bool kScatter>
@@ -729,29 +796,8 @@ JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, 
                 run_chunk<false>(J, s, xp, fp, c, step, need_energy);
                 // every node adds its joints' forces in joint order (entries ascending in j)
 #pragma omp for schedule(static)
-            for (int32_t g = 0; g < ng; ++g) {
-                Vec2 acc = fp[J.gather_node[g]];
-                for (int32_t q = J.gather_begin[g]; q < J.gather_begin[g + 1]; ++q) {
-                    const int32_t e = J.gather_entry[q];
-                    const int32_t j = e >> 2;
-                    if (s.status[j] == JointStatus::Broken) continue;  // as the scatter
-                    switch (e & 3) {
-                        case 0:
-                            acc += s.jf[j][0];
-                            break;
-                        case 1:
-                            acc += s.jf[j][1];
-                            break;
-                        case 2:
-                            acc -= s.jf[j][1];
-                            break;
-                        default:
-                            acc -= s.jf[j][0];
-                            break;
-                    }
-                }
-                fp[J.gather_node[g]] = acc;
-            }
+            for (int32_t g = 0; g < ng; ++g)
+                gather_joint_forces(J, s, fp, g);
         }
     }
     JointPass out;
@@ -767,11 +813,7 @@ JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, 
         if (bad < 0 && slot[4] >= 0) bad = static_cast<int32_t>(slot[4]);
         out.blocked += static_cast<int32_t>(slot[5]);
     }
-    if (bad >= 0) {
-        throw SimulationError(step, time, "joint " + std::to_string(bad),
-                              "joint length below 1e-9 of its reference length or not finite "
-                              "(node positions non-finite or a face collapsed); reduce dt");
-    }
+    if (bad >= 0) throw_joint_failure(bad, step, time);
     if (need_energy) out.elastic_energy = elastic.value();
     s.total_work = s.total_work_sum.value();
     out.work = s.total_work;
@@ -798,6 +840,89 @@ Real joint_critical_dt(const Joints& J, std::span<const Real> node_mass) {
         w2 = std::max(w2, k / node_mass[static_cast<size_t>(J.gather_node[g])]);
     }
     return w2 > 0 ? 2.0 / std::sqrt(w2) : std::numeric_limits<Real>::infinity();
+}
+
+void throw_joint_failure(int32_t j, int64_t step, double time) {
+    throw SimulationError(step, time, "joint " + std::to_string(j),
+                          "joint length below 1e-9 of its reference length or not finite "
+                          "(node positions non-finite or a face collapsed); reduce dt");
+}
+
+JointSubset joint_subset(const Joints& J, std::span<const int32_t> node_owner, int32_t rank) {
+    JointSubset sub;
+    const int32_t nj = J.num_joints();
+    const int32_t nc = (nj + kJointChunk - 1) / kJointChunk;
+    const auto mine = [&](int32_t j) {
+        for (const NodeId n : J.nodes[static_cast<size_t>(j)]) {
+            if (node_owner[static_cast<size_t>(n)] == rank) return true;
+        }
+        return false;
+    };
+    sub.range_begin.push_back(0);
+    for (int32_t c = 0; c < nc; ++c) {
+        const int32_t b = c * kJointChunk, e = std::min(nj, b + kJointChunk);
+        // the chunk's sums: the owner of its first joint's node 0 (one process per chunk)
+        const bool counts =
+            node_owner[static_cast<size_t>(J.nodes[static_cast<size_t>(b)][0])] == rank;
+        const size_t before = sub.ranges.size();
+        if (!counts) {
+            for (int32_t j = b; j < e; ++j) {
+                if (!mine(j)) continue;
+                if (sub.ranges.size() > before && sub.ranges.back()[1] == j) {
+                    ++sub.ranges.back()[1];
+                } else {
+                    sub.ranges.push_back({j, j + 1});
+                }
+            }
+            if (sub.ranges.size() == before) continue;  // nothing of this chunk
+        }
+        sub.chunks.push_back(c);
+        sub.counts.push_back(counts ? 1 : 0);
+        sub.range_begin.push_back(static_cast<int32_t>(sub.ranges.size()));
+    }
+    for (size_t g = 0; g < J.gather_node.size(); ++g) {
+        if (node_owner[static_cast<size_t>(J.gather_node[g])] == rank)
+            sub.gather.push_back(static_cast<int32_t>(g));
+    }
+    return sub;
+}
+
+JointSubsetPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x,
+                             std::span<Vec2> f, bool need_energy, const JointSubset& sub,
+                             int64_t step) {
+    const Vec2* xp = x.data();
+    Vec2* fp = f.data();
+    const size_t ne = sub.chunks.size();
+    if (omp_get_max_threads() == 1 || ne < 2) {
+        // serial: scatter in joint order (entries ascending)
+        for (size_t k = 0; k < ne; ++k)
+            run_entry<true>(J, s, xp, fp, sub, k, step, need_energy);
+    } else {
+        if (s.jf.size() < static_cast<size_t>(J.num_joints()))
+            s.jf.resize(static_cast<size_t>(J.num_joints()));  // first call with 2+ threads
+        const int32_t ng = static_cast<int32_t>(sub.gather.size());
+        const int32_t nent = static_cast<int32_t>(ne);
+#pragma omp parallel
+        {
+#pragma omp for schedule(static)
+            for (int32_t k = 0; k < nent; ++k)
+                run_entry<false>(J, s, xp, fp, sub, static_cast<size_t>(k), step, need_energy);
+                // the owned nodes gather their joints (every one of them ran here)
+#pragma omp for schedule(static)
+            for (int32_t q = 0; q < ng; ++q)
+                gather_joint_forces(J, s, fp, sub.gather[static_cast<size_t>(q)]);
+        }
+    }
+    JointSubsetPass out;
+    for (size_t k = 0; k < ne; ++k) {
+        if (!sub.counts[k]) continue;
+        const Real* slot = s.chunk_sums.data() + kSlots * static_cast<size_t>(sub.chunks[k]);
+        out.work.add(slot[0]);
+        if (need_energy) out.elastic.add(slot[1]);
+        out.newly_broken += static_cast<int32_t>(slot[2]);
+        if (out.bad < 0 && slot[4] >= 0) out.bad = static_cast<int32_t>(slot[4]);
+    }
+    return out;
 }
 
 }  // namespace fdem

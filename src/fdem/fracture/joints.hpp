@@ -42,6 +42,44 @@ struct JointPass {
 JointPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x, std::span<Vec2> f,
                        bool need_energy, int64_t step = 0, double time = 0);
 
+/// The SimulationError of a joint shorter than 1e-9 h_0 or not finite (joint_forces()).
+[[noreturn]] void throw_joint_failure(int32_t j, int64_t step, double time);
+
+/// One process's share of the joints in a distributed run (parallel/distributed.hpp, theory
+/// §9 and docs/parallel.md "Joints"): the chunks of kJointChunk joints it runs, ascending. A
+/// chunk whose first joint's node 0 the process owns it runs whole and sums (its partial sums
+/// are the serial chunk's, and exactly one process sums each chunk); of the other chunks it runs
+/// the ranges of joints with a node it owns. So every owned node gets the forces of all its
+/// joints in joint order (the serial bits); joints run by several processes are updated alike
+/// by each (the same positions in, the same history out).
+struct JointSubset {
+    std::vector<int32_t> chunks;       ///< ascending
+    std::vector<uint8_t> counts;       ///< per entry: 1 = runs the chunk whole and sums it
+    std::vector<int32_t> range_begin;  ///< per entry: its ranges [range_begin[k], [k + 1])
+    std::vector<std::array<int32_t, 2>> ranges;  ///< [first, end) joints (entries not counted)
+    std::vector<int32_t> gather;  ///< indices into Joints::gather_node of the owned nodes
+};
+
+/// The subset of process `rank` for node_owner[n] in [0, processes).
+JointSubset joint_subset(const Joints& J, std::span<const int32_t> node_owner, int32_t rank);
+
+/// What a process's subset pass reports, over the chunks it counts: exact sums, so that the sums
+/// of all processes (Comm::sum) are the serial pass's bits (theory §4.4).
+struct JointSubsetPass {
+    ExactSum work;             ///< the work increments of this call (eq. 9.17)
+    ExactSum elastic;          ///< E_joint (eq. 9.18), with need_energy
+    int32_t newly_broken = 0;  ///< joints broken by this call
+    int32_t bad = -1;          ///< the smallest joint too short or not finite, else -1
+};
+
+/// joint_forces() over the joints of `sub` only: forces added to f (complete on the owned nodes;
+/// with one thread also on the other nodes of the joints run), history updated for every joint
+/// run. JointState::total_work is not updated (the caller adds the work of every process). Does
+/// not throw for a bad joint: it reports it.
+JointSubsetPass joint_forces(const Joints& J, JointState& s, std::span<const Vec2> x,
+                             std::span<Vec2> f, bool need_energy, const JointSubset& sub,
+                             int64_t step);
+
 namespace detail {
 
 /// Which code computes blocks of 8 intact elastic joints in joint_forces (same bits on every

@@ -48,6 +48,8 @@ constexpr NodeId kNodeBlock = 2048;
 
 /// Node loops run on one thread below this many nodes (fork/join costs more than the work).
 constexpr NodeId kMinParallelNodes = 4 * kNodeBlock;
+// "no bad joint" in the reduction of a distributed step's joint pass (above every joint id)
+constexpr double kNoJoint = 1e300;
 
 // kNodeGroup (parallel/distributed.hpp): the node update's energy terms are summed naively over
 // each group of kNodeGroup consecutive node ids, then the groups exactly (theory §4.4). A
@@ -422,16 +424,31 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     // 3b. cohesive joints (theory eqs. 9.3-9.19): forces added to f, damage, work; E_joint and
     // W_frac are evaluated only with need_energy, else they keep their last values (stale, like
     // the strain energy)
-    if (!m.joints.nodes.empty()) {
-        JointPass jp;
-        try {
-            jp = joint_forces(m.joints, s.joints, s.x, s.f, s.need_energy, s.step, s.time);
-        } catch (const SimulationError&) {
-            // every process fails alike (the joints are computed everywhere): failure.vtu shows
-            // the forces of the serial run at this point
-            if (plan != nullptr) gather_forces(s, *plan, *comm);
-            throw;
+    ExactSum joint_elastic;  // (distributed: this process's E_joint, with need_energy)
+    if (!m.joints.nodes.empty() && plan != nullptr) {
+        // each process its JointSubset (owner computes, docs/parallel.md "Joints"); the work
+        // is summed over the processes on energy steps, the failure and the breaks every step
+        const JointSubsetPass jp =
+            joint_forces(m.joints, s.joints, s.x, s.f, s.need_energy, plan->joints.subset, s.step);
+        plan->joints.work.add(jp.work);
+        joint_elastic = jp.elastic;
+        // the smallest bad joint (the serial one: the first in joint order) and whether any
+        // joint broke, in one reduction
+        double r[2] = {jp.bad >= 0 ? static_cast<double>(jp.bad) : kNoJoint,
+                       -static_cast<double>(jp.newly_broken)};
+        comm->min(r, 2);
+        if (r[0] < kNoJoint) {
+            gather_forces(s, *plan, *comm);  // failure.vtu: the serial forces at this point
+            throw_joint_failure(static_cast<int32_t>(r[0]), s.step, s.time);
         }
+        if (r[1] < 0) {
+            // 3c. the breaks of every process, then the serial break processing everywhere
+            share_breaks(m, s, *plan, *comm);
+            process_breaks(m, s);
+        }
+    } else if (!m.joints.nodes.empty()) {
+        const JointPass jp =
+            joint_forces(m.joints, s.joints, s.x, s.f, s.need_energy, s.step, s.time);
         if (s.need_energy) {
             s.energy.joint = jp.elastic_energy;  // eq. 9.18
             s.energy.fracture = jp.fracture;     // eq. 9.19
@@ -586,18 +603,33 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         // with the contact sums of the step (energies, pairs in contact, lost pairs: the ghost
         // exchange below needs the total of those)
         const bool pair_sums = plan->contact.sums_pending;
+        // the joints' work since the last energy step and E_joint (theory eqs. 9.17-9.19)
+        const bool joint_sums = s.need_energy && !m.joints.nodes.empty();
         if (s.need_energy || mass_damped || plan->viscous || !m.bcs.empty() || pair_sums) {
-            ExactSum sums[6 + kContactSums] = {kinetic2,         gravity_work,    damping_power,
+            ExactSum sums[8 + kContactSums] = {kinetic2,         gravity_work,    damping_power,
                                                support_work_sum, element_sums[0], element_sums[1]};
-            if (pair_sums) std::copy_n(plan->contact.sums, kContactSums, sums + 6);
-            comm->sum(sums, pair_sums ? 6 + kContactSums : 6);
+            int n = 6;
+            if (joint_sums) {
+                sums[n++] = plan->joints.work;
+                sums[n++] = joint_elastic;
+            }
+            if (pair_sums) std::copy_n(plan->contact.sums, kContactSums, sums + n);
+            comm->sum(sums, pair_sums ? n + kContactSums : n);
             kinetic2 = sums[0];
             gravity_work = sums[1];
             damping_power = sums[2];
             support_work_sum = sums[3];
             pass.strain_energy = sums[4].value();
             pass.viscous_power = sums[5].value();
-            if (pair_sums) finish_contact_sums(s, *plan, *comm, sums + 6);
+            if (joint_sums) {
+                JointState& js = s.joints;
+                plan->joints.work.clear();
+                js.total_work_sum.add(sums[6]);
+                js.total_work = js.total_work_sum.value();
+                s.energy.joint = sums[7].value();                    // eq. 9.18
+                s.energy.fracture = js.total_work - s.energy.joint;  // eq. 9.19
+            }
+            if (pair_sums) finish_contact_sums(s, *plan, *comm, sums + n);
         }
         // x and v of the nodes each process reads, from their owners (with ghosts; every node
         // without, and after a step that lost a contact: its message names the node's
@@ -764,6 +796,7 @@ StepPlan make_part_plan(const Model& m, int32_t rank, int32_t procs,
         }
     }
     p.elements = element_subset(m, p.node_owner, rank);
+    if (!m.joints.nodes.empty()) p.joints.subset = joint_subset(m.joints, p.node_owner, rank);
     init_ghosts(m, p);
     for (const Material& mt : m.materials)
         p.viscous = p.viscous || mt.viscosity > 0 || mt.damping_ratio > 0;

@@ -19,6 +19,7 @@
 #include "element/cst.hpp"
 #include "fdem/model.hpp"
 #include "fdem/state.hpp"
+#include "fracture/joints.hpp"
 #include "integrate/node_update.hpp"
 #include "parallel/comm.hpp"
 
@@ -42,7 +43,8 @@ struct NodeRuns {
 /// every broad-phase rebuild. Other nodes' x and v are stale on this process between output
 /// steps; every reader of them (output, checkpoints, kicks, the broad phase, the lost-contact
 /// test) all-gathers first. Not active (x and v all-gathered every step, M2a) for models with
-/// joints (breaks rebuild the topology from every node) and for baseline A.
+/// joints (breaks rebuild the topology from every node; the joints themselves are run by their
+/// owners, JointShare) and for baseline A.
 struct GhostExchange {
     bool active = false;
     bool dirty = true;                          ///< recompute before the next step
@@ -54,6 +56,20 @@ struct GhostExchange {
     std::vector<double> send_buf, recv_buf;
     std::vector<uint8_t> node_mark;           ///< scratch of rebuild_ghosts()
     std::vector<char> need_bytes, all_bytes;  ///< scratch of rebuild_ghosts()
+};
+
+/// The joints of a distributed run (theory §9; docs/parallel.md "Joints"): each process runs
+/// its JointSubset (fracture/joints.hpp); the history of the joints it does not run is stale on
+/// it until gather_joint_state() (output, checkpoints, failures, a new plan), except the breaks,
+/// which share_breaks() gives every process on the step they happen (the fragments and the
+/// contact topology follow every break on every process).
+struct JointShare {
+    JointSubset subset;
+    /// this process's work increments (eq. 9.17) since the last sum over the processes: added
+    /// to JointState::total_work_sum on energy steps and by gather_joint_state() (exact sums:
+    /// the same bits as the serial running sum)
+    mutable ExactSum work;
+    mutable std::vector<char> bytes, all;  ///< scratch of the exchanges
 };
 
 struct StepPlan {
@@ -86,6 +102,7 @@ struct StepPlan {
     mutable NodeRuns clear_fc;
     mutable bool clear_valid = false;
     bool viscous = false;  ///< a material has viscosity: the viscous power every step
+    JointShare joints;     ///< models with joints
 };
 
 /// Whether plan's process exchanges ghosts (GhostExchange::active) and the ghosts it always
@@ -166,5 +183,14 @@ void gather_nodes(Vec2* a, const StepPlan& plan, const Comm& comm);
 
 /// Make s.f complete on every process (an all-gather of the owned parts). Collective.
 void gather_forces(State& s, const StepPlan& plan, const Comm& comm);
+
+/// The history of every joint (JointState) on every process, each chunk's from the process that
+/// sums it (JointSubset::counts), and JointState::total_work_sum with the work of every process
+/// (JointShare::work). Collective; no-op without joints.
+void gather_joint_state(const Model& m, State& s, const StepPlan& plan, const Comm& comm);
+
+/// The joints broken by this step (JointState::break_step == s.step) in the chunks each process
+/// sums, with their history, on every process. Collective.
+void share_breaks(const Model& m, State& s, const StepPlan& plan, const Comm& comm);
 
 }  // namespace fdem

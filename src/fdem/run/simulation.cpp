@@ -273,7 +273,8 @@ struct Simulation::Impl {
     /// process owns or reads (step_distributed()): gather them before they are written.
     /// Collective.
     /// checkpoint: also the candidate pairs, of which each process holds its own targets'
-    /// (the file holds the serial list).
+    /// (the file holds the serial list). The joints' history always (each process runs its
+    /// own: frames, fragments.csv, checkpoints and a new plan read every joint).
     void complete_state(bool checkpoint = false) {
         if (!plan) return;
         if (plan->ghosts.active) {
@@ -282,6 +283,7 @@ struct Simulation::Impl {
         }
         gather_forces(state, *plan, *comm);
         gather_impulses();
+        gather_joint_state(model, state, *plan, *comm);  // (each process runs its joints)
         const ContactAlgorithm a = model.contact.algorithm;
         const bool pairs = a != ContactAlgorithm::None && a != ContactAlgorithm::LegacyTriangle;
         // (each process adds the contact forces of the nodes it needs only)
@@ -673,7 +675,8 @@ void Simulation::restore_checkpoint(const std::string& path) {
     I.restart_from = fs::absolute(fs::path(path)).parent_path().string();
     I.close_writers();
     I.next_checkpoint = I.state.time + I.checkpoint_every;
-    if (I.plan) {  // other candidates: new ghost lists and box lists
+    if (I.plan) {                     // other candidates: new ghost lists and box lists
+        I.plan->joints.work.clear();  // (the file's total_work_sum holds every process's work)
         I.plan->ghosts.dirty = true;
         I.plan->contact.boxes_valid = false;
         I.plan->contact.dest_valid = false;

@@ -488,6 +488,132 @@ TEST(Joints, ThreadCountBitwise) {
     }
 }
 
+// A distributed run's share of the joints (JointSubset, docs/parallel.md "Joints"): for 1-4
+// simulated processes with spatial strips and with a random owner per node (partial ranges in
+// every chunk), 1 and 2 threads, over a loading that softens and breaks joints: every owned
+// node's force, the history of every joint a process runs, and the sums over the processes
+// (work, E_joint, breaks) are the serial kernel's bits; every chunk is summed by one process.
+TEST(JointSubset, OwnedForcesHistoryAndSumsAreSerialForAnyPartition) {
+    const MeshData mesh = make_rectangle_mesh(0, 0, 60 * kH, 40 * kH, 60, 40, true);
+    const SplitMesh sm = split_mesh(mesh.nodes, mesh.tris);
+    Joints J;
+    J.laws.push_back(make_joint_law(material(SofteningLength::Exact, MixedMode::Proportional)));
+    add_edge_joints(J, sm.x0, sm.tris, sm.vertex, 0);
+    const int32_t nn = static_cast<int32_t>(sm.x0.size());
+    const int32_t nc = (J.num_joints() + kJointChunk - 1) / kJointChunk;
+    finalize_joints(J, nn);
+    ASSERT_GE(nc, 4);
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> U(-1, 1);
+    std::vector<Vec2> mode(static_cast<size_t>(nn));
+    for (auto& m : mode)
+        m = {U(rng), U(rng)};
+    const double amp = 2 * kH * kFt / kP;
+    const auto position = [&](int n, std::vector<Vec2>& x) {
+        for (NodeId i = 0; i < nn; ++i)
+            x[static_cast<size_t>(i)] =
+                sm.x0[static_cast<size_t>(i)] + (amp * 3 * n) * mode[static_cast<size_t>(i)];
+    };
+    for (const int threads : {1, 2}) {
+        const int saved = omp_get_max_threads();
+        omp_set_num_threads(threads);
+        for (int procs = 1; procs <= 4; ++procs) {
+            for (const bool random : {false, true}) {
+                SCOPED_TRACE(testing::Message()
+                             << threads << " thread(s), " << procs << " processes, "
+                             << (random ? "random" : "strips"));
+                std::vector<int32_t> owner(static_cast<size_t>(nn));
+                for (NodeId i = 0; i < nn; ++i) {
+                    owner[static_cast<size_t>(i)] =
+                        random ? static_cast<int32_t>(rng() % static_cast<unsigned>(procs))
+                               : std::min(procs - 1,
+                                          static_cast<int32_t>(sm.x0[static_cast<size_t>(i)].x /
+                                                               (60 * kH) * procs));
+                }
+                std::vector<JointSubset> sub;
+                std::vector<JointState> st;
+                int counted = 0;
+                for (int r = 0; r < procs; ++r) {
+                    sub.push_back(joint_subset(J, owner, r));
+                    st.push_back(make_joint_state(J));
+                    for (const uint8_t c : sub.back().counts)
+                        counted += c;
+                }
+                EXPECT_EQ(counted, nc);  // every chunk summed by exactly one process
+                if (random && procs > 1) {
+                    EXPECT_FALSE(sub[0].ranges.empty());
+                }
+                JointState serial = make_joint_state(J);
+                std::vector<Vec2> x(static_cast<size_t>(nn)), f_serial, f;
+                int broken_steps = 0;
+                ExactSum running;
+                for (int n = 1; n <= 30; ++n) {
+                    position(n, x);
+                    const bool energy = n % 3 == 0;
+                    f_serial.assign(static_cast<size_t>(nn), Vec2{0.25, -0.5});
+                    const JointPass ref = joint_forces(J, serial, x, f_serial, energy, n);
+                    ExactSum work, elastic;
+                    int32_t broken = 0;
+                    for (int r = 0; r < procs; ++r) {
+                        f.assign(static_cast<size_t>(nn), Vec2{0.25, -0.5});
+                        const JointSubsetPass p = joint_forces(J, st[r], x, f, energy, sub[r], n);
+                        EXPECT_EQ(p.bad, -1);
+                        work.add(p.work);
+                        elastic.add(p.elastic);
+                        broken += p.newly_broken;
+                        bool forces = true;
+                        for (NodeId i = 0; i < nn; ++i) {
+                            if (owner[static_cast<size_t>(i)] != r) continue;
+                            forces = forces && std::memcmp(&f[static_cast<size_t>(i)],
+                                                           &f_serial[static_cast<size_t>(i)],
+                                                           sizeof(Vec2)) == 0;
+                        }
+                        EXPECT_TRUE(forces) << "step " << n << ", process " << r;
+                        // the history of every joint it runs
+                        bool history = true;
+                        const auto check = [&](int32_t j) {
+                            const auto k = static_cast<size_t>(j);
+                            history = history &&
+                                      std::memcmp(&st[r].d_max[k], &serial.d_max[k], 24) == 0 &&
+                                      std::memcmp(&st[r].dn_max[k], &serial.dn_max[k], 24) == 0 &&
+                                      std::memcmp(&st[r].work[k], &serial.work[k], 8) == 0 &&
+                                      std::memcmp(&st[r].f_prev[k], &serial.f_prev[k], 32) == 0 &&
+                                      st[r].status[k] == serial.status[k] &&
+                                      st[r].mode[k] == serial.mode[k] &&
+                                      st[r].break_step[k] == serial.break_step[k];
+                        };
+                        const JointSubset& q = sub[r];
+                        for (size_t k = 0; k < q.chunks.size(); ++k) {
+                            if (q.counts[k]) {
+                                const int32_t b = q.chunks[k] * kJointChunk;
+                                for (int32_t j = b; j < std::min(J.num_joints(), b + kJointChunk);
+                                     ++j)
+                                    check(j);
+                            } else {
+                                for (int32_t g = q.range_begin[k]; g < q.range_begin[k + 1]; ++g)
+                                    for (int32_t j = q.ranges[g][0]; j < q.ranges[g][1]; ++j)
+                                        check(j);
+                            }
+                        }
+                        EXPECT_TRUE(history) << "step " << n << ", process " << r;
+                    }
+                    // the running sum of the work over the processes and E_joint: the serial
+                    // bits
+                    running.add(work);
+                    EXPECT_EQ(running.value(), ref.work) << "step " << n;
+                    if (energy) {
+                        EXPECT_EQ(elastic.value(), ref.elastic_energy) << "step " << n;
+                    }
+                    EXPECT_EQ(broken, ref.newly_broken) << "step " << n;
+                    broken_steps += ref.newly_broken > 0;
+                }
+                EXPECT_GT(broken_steps, 0);
+            }
+        }
+        omp_set_num_threads(saved);
+    }
+}
+
 // The blocked path (8 intact elastic joints at a time, portable and AVX-512) gives the bits of
 // the scalar path: forces, sums and state over a loading that takes joints from intact through
 // softening to broken (blocks then mix elastic, softening and broken joints, and fall back),
