@@ -1,7 +1,6 @@
 // The joints of a distributed run (parallel/distributed.hpp JointShare, theory §9,
 // docs/parallel.md "Joints"): the history of the joints each process sums, to every process.
 #include <algorithm>
-#include <array>
 #include <cstring>
 
 #include "parallel/distributed.hpp"
@@ -11,77 +10,61 @@ namespace fdem {
 namespace {
 
 // One joint's history as bytes: id, then every per-joint array of JointState (the per-mode
-// history only where the model has it)
+// history only where the model has it), in the order of fields()
 class JointRecords {
 public:
-    explicit JointRecords(const JointState& js) : mixed_(!js.dn_max.empty()) {}
-
-    size_t bytes() const {
-        return sizeof(int32_t) + 2 * sizeof(Real3) + (mixed_ ? 4 * sizeof(Real3) : 0) +
-               3 * sizeof(uint8_t) + sizeof(int64_t) + sizeof(Real) + 2 * sizeof(Real4);
+    // (js of a model with joints: joint 0 exists)
+    explicit JointRecords(const JointState& js) : mixed_(!js.dn_max.empty()) {
+        fields(js, 0, [&](const auto& v) { bytes_ += sizeof v; });
     }
 
     void pack(const JointState& js, int32_t j, std::vector<char>& out) const {
         const size_t at = out.size();
-        out.resize(at + bytes());
+        out.resize(at + bytes_);
         char* p = out.data() + at;
-        const auto k = static_cast<size_t>(j);
-        put(p, j);
-        put(p, js.d_max[k]);
-        put(p, js.z_max[k]);
-        if (mixed_) {
-            put(p, js.dn_max[k]);
-            put(p, js.ds_max[k]);
-            put(p, js.an_min[k]);
-            put(p, js.as_min[k]);
-        }
-        put(p, js.status[k]);
-        put(p, js.mode_bits[k]);
-        put(p, js.mode[k]);
-        put(p, js.break_step[k]);
-        put(p, js.work[k]);
-        put(p, js.f_prev[k]);
-        put(p, js.d_prev[k]);
+        std::memcpy(p, &j, sizeof j);
+        p += sizeof j;
+        fields(js, static_cast<size_t>(j), [&](const auto& v) {
+            std::memcpy(p, &v, sizeof v);
+            p += sizeof v;
+        });
     }
 
     // the records in [p, end) into js
     void unpack(JointState& js, const char* p, const char* end) const {
         while (p < end) {
             int32_t j = 0;
-            get(p, j);
-            const auto k = static_cast<size_t>(j);
-            get(p, js.d_max[k]);
-            get(p, js.z_max[k]);
-            if (mixed_) {
-                get(p, js.dn_max[k]);
-                get(p, js.ds_max[k]);
-                get(p, js.an_min[k]);
-                get(p, js.as_min[k]);
-            }
-            get(p, js.status[k]);
-            get(p, js.mode_bits[k]);
-            get(p, js.mode[k]);
-            get(p, js.break_step[k]);
-            get(p, js.work[k]);
-            get(p, js.f_prev[k]);
-            get(p, js.d_prev[k]);
+            std::memcpy(&j, p, sizeof j);
+            p += sizeof j;
+            fields(js, static_cast<size_t>(j), [&](auto& v) {
+                std::memcpy(&v, p, sizeof v);
+                p += sizeof v;
+            });
         }
     }
 
 private:
-    using Real3 = std::array<Real, 3>;
-    using Real4 = std::array<Real, 4>;
-    template <class T>
-    static void put(char*& p, const T& v) {
-        std::memcpy(p, &v, sizeof v);
-        p += sizeof v;
-    }
-    template <class T>
-    static void get(const char*& p, T& v) {
-        std::memcpy(&v, p, sizeof v);
-        p += sizeof v;
+    // fn(field) for every per-joint field of joint k (JointState or const JointState)
+    template <class JS, class Fn>
+    void fields(JS& js, size_t k, Fn fn) const {
+        fn(js.d_max[k]);
+        fn(js.z_max[k]);
+        if (mixed_) {
+            fn(js.dn_max[k]);
+            fn(js.ds_max[k]);
+            fn(js.an_min[k]);
+            fn(js.as_min[k]);
+        }
+        fn(js.status[k]);
+        fn(js.mode_bits[k]);
+        fn(js.mode[k]);
+        fn(js.break_step[k]);
+        fn(js.work[k]);
+        fn(js.f_prev[k]);
+        fn(js.d_prev[k]);
     }
     bool mixed_;
+    size_t bytes_ = sizeof(int32_t);
 };
 
 // every process's records (its counted chunks' joints for which keep(j)) on every process
