@@ -1,6 +1,7 @@
-// Meshes of a distributed run read once (issue #15, docs/parallel.md "Running on a cluster"): process 0 reads
-// each mesh file of the scenario (Gmsh meshes a .geo there) and broadcasts it, bit for bit, to
-// the other processes, instead of every process meshing the same .geo or reading the same .msh.
+// Meshes of a distributed run read once (issue #15, docs/parallel.md "Running on a cluster"):
+// process 0 reads each mesh file of the scenario (Gmsh meshes a .geo there) and broadcasts it, bit
+// for bit, to the other processes, instead of every process meshing the same .geo or reading the
+// same .msh.
 #pragma once
 
 #include "fdem/scenario.hpp"
