@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Usage: same_as_serial.sh FDEM MPIEXEC SCENARIO OUT "NP..." [fdem run options...]
 # Runs SCENARIO with one process, then under mpirun with each NP, and checks that the state hash
-# (x, v, energies), history.csv and bodies.csv are byte-identical to the one-process run's and
-# its last frame is bitwise the serial one (issue #15, spec parallel-and-python.md T1, T6).
+# (x, v, energies), history.csv, bodies.csv and (with joints) cracks.csv and fragments.csv are
+# byte-identical to the one-process run's and its last frame is bitwise the serial one (issue
+# #15, spec parallel-and-python.md T1, T6).
 # OMP_NUM_THREADS is the caller's.
 set -euo pipefail
 fdem=$1 mpiexec=$2 scenario=$3 out=$4 nps=$5
@@ -30,7 +31,7 @@ for np in $nps; do
         echo "FAIL: the state hash of -np $np differs"
         fail=1
     fi
-    for f in history.csv bodies.csv; do
+    for f in history.csv bodies.csv cracks.csv fragments.csv; do
         if [ -f "$out/serial/$f" ] && ! cmp -s "$out/serial/$f" "$out/np$np/$f"; then
             echo "FAIL: $f of -np $np differs"
             fail=1

@@ -425,6 +425,7 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     // W_frac are evaluated only with need_energy, else they keep their last values (stale, like
     // the strain energy)
     ExactSum joint_elastic;  // (distributed: this process's E_joint, with need_energy)
+    bool broke = false;      // (distributed: a joint of any process broke in this step)
     if (!m.joints.nodes.empty() && plan != nullptr) {
         // each process its JointSubset (owner computes, docs/parallel.md "Joints"); the work
         // is summed over the processes on energy steps, the failure and the breaks every step
@@ -442,7 +443,10 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
             throw_joint_failure(static_cast<int32_t>(r[0]), s.step, s.time);
         }
         if (r[1] < 0) {
+            broke = true;
             // 3c. the breaks of every process, then the serial break processing everywhere
+            // (it reads no positions: sectors, fragments and topology come from the mesh and
+            // the joints' status; the contact's broad phase below all-gathers x and v first)
             share_breaks(m, s, *plan, *comm);
             process_breaks(m, s);
         }
@@ -632,11 +636,12 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
             if (pair_sums) finish_contact_sums(s, *plan, *comm, sums + n);
         }
         // x and v of the nodes each process reads, from their owners (with ghosts; every node
-        // without, and after a step that lost a contact: its message names the node's
-        // position); the supports' reactions; f, f_contact (each process has them for the
-        // nodes it needs) and the other nodes' x and v are gathered where they are written
-        // (Simulation, output steps)
-        if (plan->ghosts.active && s.contact.lost_inside == 0) {
+        // without, after a step that lost a contact: its message names the node's position,
+        // and after a step with breaks: cracks.csv gives the broken joints' positions); the
+        // supports' reactions; f, f_contact (each process has them for the nodes it needs) and
+        // the other nodes' x and v are gathered where they are written (Simulation, output
+        // steps)
+        if (plan->ghosts.active && s.contact.lost_inside == 0 && !broke) {
             exchange_ghosts(s, *plan, *comm);
         } else {
             gather_nodes(s.x.data(), *plan, *comm);

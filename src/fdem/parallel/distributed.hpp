@@ -37,14 +37,15 @@ struct NodeRuns {
 
 /// Ghost nodes of a process (spec D6): the nodes it reads but does not own, whose x and v its
 /// owners send after every step instead of an all-gather of every node. They are the nodes of
-/// the element chunks it runs (D6.1, "owner computes"), of the loads (every process evaluates
-/// them) and, for every candidate pair of its targets, the target's nodes and every node of the
-/// contactor body (its sub-triangles, virtual nodes' parents and body box: D6.2), recomputed on
-/// every broad-phase rebuild. Other nodes' x and v are stale on this process between output
-/// steps; every reader of them (output, checkpoints, kicks, the broad phase, the lost-contact
-/// test) all-gathers first. Not active (x and v all-gathered every step, M2a) for models with
-/// joints (breaks rebuild the topology from every node; the joints themselves are run by their
-/// owners, JointShare) and for baseline A.
+/// the element chunks it runs (D6.1, "owner computes"), of the joints it runs (JointShare), of
+/// the loads (every process evaluates them) and, for every candidate pair of its targets, the
+/// target's nodes and the contact nodes of the contactor body (the vertices of its
+/// sub-triangles, virtual nodes' parents, and every copy of their sectors where the body is
+/// welded: what its sub-triangles, box and welded positions read, D6.2), recomputed on every
+/// broad-phase rebuild. Other nodes' x and v are stale on this process between output steps;
+/// every reader of them (output, checkpoints, kicks, the broad phase, the lost-contact test,
+/// cracks.csv after a step with breaks) all-gathers first. Not active (x and v all-gathered
+/// every step, M2a) for baseline A.
 struct GhostExchange {
     bool active = false;
     bool dirty = true;                          ///< recompute before the next step

@@ -34,6 +34,25 @@ std::vector<NodeId> static_need(const Model& m, const StepPlan& p) {
                 mark_tris(es.runs[static_cast<size_t>(r)][0], es.runs[static_cast<size_t>(r)][1]);
         }
     }
+    // the joints it runs (its JointSubset: the chunks it sums whole, the ranges of the others)
+    const JointSubset& js = p.joints.subset;
+    const int32_t nj = m.joints.num_joints();
+    auto mark_joints = [&](int32_t b, int32_t e) {
+        for (int32_t j = b; j < e; ++j) {
+            for (const NodeId i : m.joints.nodes[static_cast<size_t>(j)])
+                mark[static_cast<size_t>(i)] = 1;
+        }
+    };
+    for (size_t k = 0; k < js.chunks.size(); ++k) {
+        if (js.counts[k]) {
+            const int32_t b = js.chunks[k] * kJointChunk;
+            mark_joints(b, std::min(nj, b + kJointChunk));
+        } else {
+            for (int32_t r = js.range_begin[k]; r < js.range_begin[k + 1]; ++r)
+                mark_joints(js.ranges[static_cast<size_t>(r)][0],
+                            js.ranges[static_cast<size_t>(r)][1]);
+        }
+    }
     for (const Load& ld : m.loads) {  // evaluated by every process (x, v of its nodes)
         for (const NodeId i : ld.nodes)
             mark[static_cast<size_t>(i)] = 1;
@@ -54,10 +73,8 @@ std::vector<NodeId> static_need(const Model& m, const StepPlan& p) {
 
 void init_ghosts(const Model& m, StepPlan& p) {
     GhostExchange& g = p.ghosts;
-    // joints: a break rebuilds sectors, fragments and the contact topology from every node;
-    // baseline A pairs every triangle of every body: both read all nodes (x, v all-gathered)
-    g.active = p.procs > 1 && m.joints.nodes.empty() &&
-               m.contact.algorithm != ContactAlgorithm::LegacyTriangle;
+    // baseline A pairs every triangle of every body: it reads all nodes (x, v all-gathered)
+    g.active = p.procs > 1 && m.contact.algorithm != ContactAlgorithm::LegacyTriangle;
     g.dirty = true;
     if (!g.active) return;
     g.static_need = static_need(m, p);
@@ -87,13 +104,42 @@ void ghost_receive_lists(const Model& m, const State& s, const StepPlan& p) {
         mark[static_cast<size_t>(
             ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)][1])] = 1;
     }
+    // a contactor's contact nodes (ContactTopology::body_cnode: the vertices of its
+    // sub-triangles, real ones and virtual ones by their parents) and, where the contactor is
+    // welded (theory eq. 6.23), every copy of their sectors: what the narrow phase, the body box
+    // and the welded positions and velocities read of it. Only these: a jointed specimen is the
+    // contactor of the platens and of itself (rule X), and its inner nodes are never read there
+    const bool listed =
+        ct.body_cnode_begin.size() == ct.body_sub_begin.size() && ct.body_cnode_begin.size() > 1;
+    auto mark_welded = [&](NodeId i) {
+        mark[static_cast<size_t>(i)] = 1;
+        if (!ct.welded()) return;
+        const int32_t grp = ct.weld_group[static_cast<size_t>(i)];
+        if (grp < 0) return;
+        for (int32_t k = ct.weld_group_begin[static_cast<size_t>(grp)];
+             k < ct.weld_group_begin[static_cast<size_t>(grp) + 1]; ++k)
+            mark[static_cast<size_t>(ct.weld_copy[static_cast<size_t>(k)])] = 1;
+    };
     for (const BodyId b : contactor_bodies(m, s, p)) {
         const Body& body = m.bodies[static_cast<size_t>(b)];
         // a fixed body's nodes never move (x = x0, v = 0 from the start or a restore, on every
         // process): nothing to send (a wall ring around a raster would otherwise reach every
         // process along the walls whole)
         if (body.fixed) continue;
-        std::fill(mark.begin() + body.node_begin, mark.begin() + body.node_end, uint8_t{1});
+        if (!listed) {  // (a topology without the lists: every node of the body)
+            std::fill(mark.begin() + body.node_begin, mark.begin() + body.node_end, uint8_t{1});
+            continue;
+        }
+        for (int32_t e = ct.body_cnode_begin[static_cast<size_t>(b)];
+             e < ct.body_cnode_begin[static_cast<size_t>(b) + 1]; ++e) {
+            const NodeId i = ct.body_cnode[static_cast<size_t>(e)];
+            if (i < ct.num_real_nodes) {
+                mark_welded(i);
+            } else {
+                for (const NodeId q : ct.virt_parent[static_cast<size_t>(i - ct.num_real_nodes)])
+                    mark_welded(q);
+            }
+        }
     }
     // the ghosts, by owner then id, and their count per owner (in doubles, 4 per node)
     const int P = p.procs;
