@@ -173,6 +173,10 @@ struct ContactState {
     /// other writer of f_contact (checkpoint read, the all-gather of output steps, baseline A)
     /// sets fc_sparse false
     std::vector<NodeId> fc_nodes;
+    /// per real node, 1 while it is in fc_nodes during an apply's listing (all 0 between
+    /// calls): the listing keeps each node once before its sort. Scratch, sized with fc_nodes'
+    /// capacity
+    std::vector<uint8_t> fc_mark;
     bool fc_sparse = false;
     /// false: no body-box reject (every box infinite), for the tests that compare the narrow
     /// phase with and without it; not saved in checkpoints

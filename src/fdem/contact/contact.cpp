@@ -217,13 +217,22 @@ void note_contact_force_nodes(ContactState& cs, size_t pairs, EachPair&& each) {
     // (a pair reaches at least its target and the contactor's three vertices)
     bool overflow = 4 * pairs > list.capacity() - list.size();
     if (!overflow) {
+        // each node once (fc_mark): a welded contactor's pairs reach the same sector copies
+        // many times over, and sorting the repeats cost ~1.5 % of a jointed UCS's step
+        uint8_t* mark = cs.fc_mark.data();
+        for (const NodeId i : list)  // (the earlier applies of this step)
+            mark[i] = 1;
         each([&](NodeId i, Vec2) {
+            if (mark[i]) return;
             if (list.size() == list.capacity()) {
                 overflow = true;
                 return;
             }
+            mark[i] = 1;
             list.push_back(i);
         });
+        for (const NodeId i : list)
+            mark[i] = 0;
     }
     if (overflow) {
         cs.fc_sparse = false;
@@ -231,7 +240,6 @@ void note_contact_force_nodes(ContactState& cs, size_t pairs, EachPair&& each) {
         return;
     }
     std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
 }
 
 // The real nodes [lo, hi] the forces of pair (target j, contactor c) can reach: the target's
@@ -1912,6 +1920,8 @@ bool clear_listed_contact_forces(State& s, NodeId num_nodes) {
     // the caller zeroes every node it reads: the empty list is exact from there on
     const size_t cap = static_cast<size_t>(num_nodes / kSparseContactForceRatio);
     if (cs.fc_nodes.capacity() < cap) cs.fc_nodes.reserve(cap);  // (the first step)
+    if (cs.fc_mark.size() != static_cast<size_t>(num_nodes))
+        cs.fc_mark.assign(static_cast<size_t>(num_nodes), 0);
     cs.fc_nodes.clear();
     cs.fc_sparse = true;
     return false;
