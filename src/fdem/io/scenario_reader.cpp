@@ -23,6 +23,7 @@
 #include "fdem/mesh.hpp"
 #include "fdem/scenario.hpp"
 #include "fracture/joints.hpp"
+#include "fracture/sectors.hpp"
 #include "io/toml_fields.hpp"
 #include "model/renumber.hpp"
 
@@ -206,9 +207,22 @@ public:
                 for (NodeId& n : e.node_map.model_nodes)
                     n = node_new[static_cast<size_t>(n)];
             }
-            // the contact topology of the bodies as loaded, for the load-time checks and the
-            // stable time step (make_state() builds State::topology the same way)
+            // the contact topology of the bodies as loaded, without welds: for the stable time
+            // step, every joint face of a body with fracture a boundary (any joint may break,
+            // and its faces' nodes become contact targets: the bound holds after any breaks)
             topo_ = build_topology(sc.model);
+            // and as make_state() builds State::topology, for the checks of the geometry at
+            // t = 0: bodies with fracture welded over their joints, every one intact but the
+            // pre-broken ones (against topo_, the initial-overlap check measured a point's depth
+            // to the nearest joint face, over all of them per point)
+            if (!sc.model.joints.nodes.empty()) {
+                std::vector<JointStatus> status(sc.model.joints.nodes.size(), JointStatus::Intact);
+                for (const int32_t j : sc.model.prebroken_joints)
+                    status[static_cast<size_t>(j)] = JointStatus::Broken;
+                std::vector<NodeId> sectors;
+                compute_node_sectors(sc.model, status, sectors);
+                build_topology(sc.model, sectors, topo_welded_);
+            }
         } catch (const InputError& e) {
             if (!e.location().file.empty()) {
                 throw;
@@ -1933,9 +1947,10 @@ private:
     void check_contact_geometry(Scenario& sc) {
         const Model& m = sc.model;
         if (m.contact.algorithm == ContactAlgorithm::None) return;
+        const ContactTopology& topo = m.joints.nodes.empty() ? topo_ : topo_welded_;
         // one warning per [[body]] entry (an entry with pieces = "separate" can make thousands of
         // bodies): its worst body (largest near_dist / dist), and how many others share the issue
-        const std::vector<ThinLayer> thin = find_thin_layers(m, topo_);
+        const std::vector<ThinLayer> thin = find_thin_layers(m, topo);
         std::vector<size_t> worst(bodies_.size(), thin.size());
         std::vector<int32_t> affected(bodies_.size(), 0);
         for (size_t k = 0; k < thin.size(); ++k) {
@@ -1957,14 +1972,14 @@ private:
             }
             sc.warnings.push_back(fmt::format("{}:{}:{}: {}{}", src_.name, e->source().begin.line,
                                               e->source().begin.column,
-                                              thin_layer_warning(m, topo_, thin[worst[g]]), more));
+                                              thin_layer_warning(m, topo, thin[worst[g]]), more));
         }
         if (m.contact.allow_initial_overlap) return;
-        const InitialOverlap o = find_initial_overlap(m, topo_);
+        const InitialOverlap o = find_initial_overlap(m, topo);
         if (!o.found) return;
         const Body& a = m.bodies[o.body];
         const Body& b = m.bodies[o.other];
-        const ContactTopology& cm = topo_;
+        const ContactTopology& cm = topo;
         std::string point;
         switch (o.point) {
             case InitialOverlap::Point::Node:
@@ -2004,7 +2019,8 @@ private:
     std::vector<BodyEntry> bodies_;
     std::unordered_map<std::string, size_t> body_by_name_;  ///< name -> index into bodies_
     std::vector<LoadedMesh> meshes_;
-    ContactTopology topo_;  ///< topology of the loaded bodies (load-time checks, stable dt)
+    ContactTopology topo_;         ///< topology of the loaded bodies, unwelded (stable dt)
+    ContactTopology topo_welded_;  ///< with joints: the topology at t = 0 (geometry checks)
 };
 
 }  // namespace
