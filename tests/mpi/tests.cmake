@@ -244,6 +244,16 @@ add_test(NAME mpi.restart_on_another_process_count
                  ${ex}/03_contact_slide/scenario.toml ${mpi_out}/restart 0.002 0.004)
 set_tests_properties(mpi.restart_on_another_process_count PROPERTIES LABELS mpi TIMEOUT 300
                      PASS_REGULAR_EXPRESSION "OK: restart on another process count is bitwise")
+# a fracturing model (joints run by their owners, ghosts): 6 joints broken before the
+# checkpoint at 2.7e-5 s, 14 more after it; the restarts on 3 and 1 processes end bitwise the
+# uninterrupted run
+add_test(NAME mpi.restart_on_another_process_count_joints
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/restart_other_count.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${mpi_dir}/impact_fine.toml ${mpi_out}/restart_joints 2.7e-5 3e-5)
+set_tests_properties(mpi.restart_on_another_process_count_joints PROPERTIES LABELS mpi
+                     TIMEOUT 300 PROCESSORS 2 PASS_REGULAR_EXPRESSION
+                     "OK: restart on another process count is bitwise")
 # the same with a new partition at every broad-phase search before and after the restart (D10:
 # the restarted run starts from the reference partition and rebalances at its first search)
 add_test(NAME mpi.restart_on_another_process_count_rebalancing
