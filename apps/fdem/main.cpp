@@ -649,6 +649,7 @@ int decompose_command(const DecomposeOptions& opt, const fdem::Comm* rcb_comm) {
         const auto [rec_mean, rec_max] = stat([](const fdem::PartCounts& c) {
             return fdem::contact_bytes_in(c) + fdem::contact_bytes_out(c);
         });
+        const auto [j_mean, j_max] = stat([](const fdem::PartCounts& c) { return c.joints_run; });
         int64_t gathered = 0, records = 0, sent = 0, counted = 0;
         for (const fdem::PartCounts& c : parts) {
             gathered += fdem::gathered_bytes(c);
@@ -662,10 +663,13 @@ int decompose_command(const DecomposeOptions& opt, const fdem::Comm* rcb_comm) {
             "{:.0f} / {:.0f} ({:+.1f} % redundant); ghost nodes {:.0f} / {:.0f}; messages {:.1f} "
             "/ {:.0f}; point-to-point bytes in + out {:.0f} / {:.0f}; candidate pairs {:.0f} / "
             "{:.0f}; pairs in contact {}, {} record copies sent (bytes in + out {:.0f} / {:.0f}); "
-            "all-gathered per step {} bytes to every part\n",
+            "all-gathered per step {} bytes to every part{}\n",
             P, opt.partition, t_dec, n_mean, n_max, tr_mean, tr_max,
             T > 0 ? 100.0 * (tr_mean * P / T - 1.0) : 0.0, g_mean, g_max, msg_mean, msg_max, b_mean,
-            b_max, p_mean, p_max, records, sent, rec_mean, rec_max, gathered);
+            b_max, p_mean, p_max, records, sent, rec_mean, rec_max, gathered,
+            m.joints.nodes.empty()
+                ? std::string()
+                : fmt::format("; joints run {:.0f} mean / {:.0f} max", j_mean, j_max));
     }
     if (!opt.csv.empty()) {
         std::FILE* fp = std::fopen(opt.csv.c_str(), "w");

@@ -38,6 +38,26 @@ PartCounts own_counts(const Model& m, const State& s, const StepPlan& p) {
                     es.runs[static_cast<size_t>(r)][1] - es.runs[static_cast<size_t>(r)][0];
         }
     }
+    // the joints it runs (its JointSubset: the chunks it sums whole, the ranges of the others)
+    // that are not broken (a broken joint costs a status test)
+    if (!m.joints.nodes.empty() && s.joints.status.size() == m.joints.nodes.size()) {
+        const JointSubset& js = p.joints.subset;
+        const int32_t nj = m.joints.num_joints();
+        auto count = [&](int32_t b, int32_t e) {
+            for (int32_t j = b; j < e; ++j)
+                c.joints_run += s.joints.status[static_cast<size_t>(j)] != JointStatus::Broken;
+        };
+        for (size_t k = 0; k < js.chunks.size(); ++k) {
+            if (js.counts[k]) {
+                const int32_t b = js.chunks[k] * kJointChunk;
+                count(b, std::min(nj, b + kJointChunk));
+            } else {
+                for (int32_t r = js.range_begin[k]; r < js.range_begin[k + 1]; ++r)
+                    count(js.ranges[static_cast<size_t>(r)][0],
+                          js.ranges[static_cast<size_t>(r)][1]);
+            }
+        }
+    }
     const ContactTopology& ct = s.topology;
     const int32_t* owner = p.node_owner.data();
     if (m.contact.algorithm != ContactAlgorithm::None &&
@@ -241,14 +261,15 @@ std::string partition_csv(std::span<const PartCounts> parts) {
         "parts,part,nodes,tris_counted,tris_run,chunks_run,ghost_nodes,send_nodes,recv_from,"
         "send_to,candidate_pairs,contact_records,support_slots,ghost_bytes_in,ghost_bytes_out,"
         "gathered_bytes,contact_neighbours,contact_sent,contact_received,contact_bytes_in,"
-        "contact_bytes_out\n";
+        "contact_bytes_out,joints_run\n";
     for (const PartCounts& c : parts) {
-        out += fmt::format(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", parts.size(),
-            c.part, c.nodes, c.tris_counted, c.tris_run, c.chunks_run, c.ghost_nodes, c.send_nodes,
-            c.recv_from, c.send_to, c.candidate_pairs, c.contact_records, c.support_slots,
-            ghost_bytes_in(c), ghost_bytes_out(c), gathered_bytes(c), c.contact_neighbours,
-            c.contact_sent, c.contact_received, contact_bytes_in(c), contact_bytes_out(c));
+        out +=
+            fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+                        parts.size(), c.part, c.nodes, c.tris_counted, c.tris_run, c.chunks_run,
+                        c.ghost_nodes, c.send_nodes, c.recv_from, c.send_to, c.candidate_pairs,
+                        c.contact_records, c.support_slots, ghost_bytes_in(c), ghost_bytes_out(c),
+                        gathered_bytes(c), c.contact_neighbours, c.contact_sent, c.contact_received,
+                        contact_bytes_in(c), contact_bytes_out(c), c.joints_run);
     }
     return out;
 }

@@ -43,6 +43,7 @@ struct PartCounts {
     int32_t contact_neighbours = 0;  ///< processes it exchanges contact records with
     int64_t contact_sent = 0;        ///< record copies it sends (summed over receivers)
     int64_t contact_received = 0;    ///< records it receives
+    int64_t joints_run = 0;          ///< joints it runs that are not broken (JointSubset)
 };
 
 /// The counts of plan's process (its ghost lists must be current: after a step of the
@@ -77,7 +78,8 @@ std::vector<int32_t> group_owners(std::span<const double> weight, const std::str
 /// performance.md, one thread): the element pass and node update per triangle run
 /// (BM_StepNoEnergy: 7 ns), a candidate pair the narrow phase rejects (BM_NarrowPhaseSplit:
 /// 3-7 ns) and a pair in contact (87-150 ns). The weights of load balancing (spec D10): only
-/// their ratios matter.
+/// their ratios matter. Joints are not weighted (docs/parallel.md "Joints": a weight per joint
+/// split a small jointed body between processes and made the step slower, tried 2026-12-03).
 inline constexpr double kWorkPerTriangle = 7.0;
 inline constexpr double kWorkPerCandidate = 4.0;
 inline constexpr double kWorkPerContact = 100.0;
@@ -87,7 +89,7 @@ inline constexpr double kWorkPerContact = 100.0;
 double estimated_work(const PartCounts& c);
 
 /// partition.csv: a header line and one row per part (the fields of PartCounts, then the bytes
-/// per step it receives and sends point to point and all-gathers).
+/// per step it receives and sends point to point and all-gathers, then joints_run).
 std::string partition_csv(std::span<const PartCounts> parts);
 
 /// Bytes per step a part exchanges: ghost bytes in and out (32 per node), contact records in

@@ -39,8 +39,9 @@ Scene particle_scene() {
 
 // the ghosts of part r by the definition of spec D6 (distributed.hpp GhostExchange): the nodes
 // of every triangle with an owned node and of every chunk the part counts, of the loads, the second
-// node of an owned edge target, and every node of the contactor body (unless fixed) of a pair of an
-// owned target; minus the owned nodes
+// node of an owned edge target, and the contact nodes of the contactor body (unless fixed) of a
+// pair of an owned target (its sub-triangles' real vertices and its virtual nodes' parents; this
+// scene has no welds); minus the owned nodes
 std::set<NodeId> ghosts_by_definition(const Model& m, const State& s,
                                       const std::vector<int32_t>& node_owner, int32_t r) {
     std::set<NodeId> need;
@@ -65,10 +66,20 @@ std::set<NodeId> ghosts_by_definition(const Model& m, const State& s,
                              : std::array<NodeId, 2>{j, j};
         if (node_owner[static_cast<size_t>(e[0])] != r) continue;
         need.insert(e[1]);
-        const Body& b = m.bodies[static_cast<size_t>(s.contact.cand.body[pr])];
-        if (b.fixed) continue;  // its nodes never move: every process has them
-        for (NodeId n = b.node_begin; n < b.node_end; ++n)
-            need.insert(n);
+        const BodyId cb = s.contact.cand.body[pr];
+        if (m.bodies[static_cast<size_t>(cb)].fixed) continue;  // never moves: every process has it
+        for (int32_t t = ct.body_sub_begin[static_cast<size_t>(cb)];
+             t < ct.body_sub_begin[static_cast<size_t>(cb) + 1]; ++t) {
+            for (const NodeId n : ct.sub_tri[static_cast<size_t>(t)]) {
+                if (n < ct.num_real_nodes) {
+                    need.insert(n);
+                } else {
+                    for (const NodeId q :
+                         ct.virt_parent[static_cast<size_t>(n - ct.num_real_nodes)])
+                        need.insert(q);
+                }
+            }
+        }
     }
     std::set<NodeId> out;
     for (const NodeId n : need) {
@@ -288,6 +299,40 @@ TEST(Decompose, NodeGroupWorkAtTheCurrentPositions) {
         EXPECT_DOUBLE_EQ(weight[g], expect[g]) << g;
 }
 
+// joints_run: the joints of a part's JointSubset that are not broken: every joint of the chunks
+// whose first joint's node 0 it owns, and every other joint with a node it owns (docs/parallel.md
+// "Joints"); one part runs them all
+TEST(Decompose, JointsRunAreThoseOfThePartsSubset) {
+    scenes::BlockOptions o;
+    o.num_tris = 1 << 13;  // 4 joint chunks
+    o.jointed = true;
+    const Model m = scenes::make_block(o);
+    State s = make_state(m, 0.5 * stable_time_step(m));
+    const int32_t nj = m.joints.num_joints();
+    ASSERT_GT(nj, 2 * kJointChunk);
+    s.joints.status[7] = JointStatus::Broken;  // a broken joint is not counted
+    for (const int32_t P : {1, 2, 3}) {
+        SCOPED_TRACE(P);
+        const std::vector<int32_t> groups = group_owners(m, "random", P);
+        const std::vector<PartCounts> parts = decompose(m, s, groups, P);
+        int64_t sum = 0;
+        for (int32_t r = 0; r < P; ++r) {
+            int64_t expect = 0;
+            for (int32_t j = 0; j < nj; ++j) {
+                const int32_t first = j / kJointChunk * kJointChunk;
+                bool runs = groups[static_cast<size_t>(m.joints.nodes[first][0] / kNodeGroup)] == r;
+                for (const NodeId n : m.joints.nodes[static_cast<size_t>(j)])
+                    runs = runs || groups[static_cast<size_t>(n / kNodeGroup)] == r;
+                expect += runs && j != 7;
+            }
+            EXPECT_EQ(parts[static_cast<size_t>(r)].joints_run, expect) << r;
+            sum += parts[static_cast<size_t>(r)].joints_run;
+        }
+        if (P == 1) EXPECT_EQ(sum, nj - 1);
+        if (P > 1) EXPECT_GT(sum, nj - 1);  // the joints at the cuts run by each side
+    }
+}
+
 TEST(Decompose, CsvHasAHeaderAndARowPerPart) {
     std::vector<PartCounts> parts(2);
     parts[1].part = 1;
@@ -302,11 +347,11 @@ TEST(Decompose, CsvHasAHeaderAndARowPerPart) {
               "parts,part,nodes,tris_counted,tris_run,chunks_run,ghost_nodes,send_nodes,recv_from,"
               "send_to,candidate_pairs,contact_records,support_slots,ghost_bytes_in,"
               "ghost_bytes_out,gathered_bytes,contact_neighbours,contact_sent,contact_received,"
-              "contact_bytes_in,contact_bytes_out");
+              "contact_bytes_in,contact_bytes_out,joints_run");
     // ghosts 32 B per node; the supports' all-gather 16 B per slot; records point to point
     const int64_t rec = static_cast<int64_t>(kContactRecordBytes);
     EXPECT_NE(
-        csv.find(fmt::format("\n2,1,0,0,0,0,3,0,0,0,0,2,1,96,0,16,1,3,1,{},{}\n", rec, 3 * rec)),
+        csv.find(fmt::format("\n2,1,0,0,0,0,3,0,0,0,0,2,1,96,0,16,1,3,1,{},{},0\n", rec, 3 * rec)),
         std::string::npos)
         << csv;
 }
