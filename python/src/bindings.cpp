@@ -293,6 +293,8 @@ py::dict energy_dict(const fdem::Energy& e) {
     d["work_external"] = e.work_external;
     d["dissipated_viscous"] = e.dissipated_viscous;
     d["dissipated_contact"] = e.dissipated_contact;
+    d["joint"] = e.joint;        // E_joint, theory eq. 9.18
+    d["fracture"] = e.fracture;  // W_frac, theory eq. 9.19
     d["total"] = e.total();
     return d;
 }
@@ -495,7 +497,56 @@ PYBIND11_MODULE(_fdem, mod) {
                 return view<uint8_t>(self, e.data(), e.size(), 1, true);
             },
             "(n_supports,) uint8 on/off switch of each support (1 = active in its window); "
-            "WRITABLE view");
+            "WRITABLE view")
+        // fracture (docs/theory.md §9): empty arrays for a model without joints
+        .def_property_readonly(
+            "joint_status",
+            [](py::object self) {
+                const auto& a = self.cast<fdem::State&>().joints.status;
+                static_assert(sizeof(fdem::JointStatus) == 1);
+                return view<uint8_t>(self, a.data(), a.size(), 1, false);
+            },
+            "(n_joints,) uint8 status of each joint: 0 intact, 1 softening, 2 broken (theory "
+            "§9.4); read-only view")
+        .def_property_readonly(
+            "joint_damage",
+            [](py::object self) {
+                const auto& a = self.cast<fdem::State&>().joints.d_max;
+                return view<double>(self, a.data(), a.size(), 3, false);
+            },
+            "(n_joints, 3) frozen damage D_max at the joint's three integration points (theory "
+            "eq. 9.9, §9.4; >= 1: no cohesion there); read-only view")
+        .def_property_readonly(
+            "joint_mode",
+            [](py::object self) {
+                const auto& a = self.cast<fdem::State&>().joints.mode;
+                static_assert(sizeof(fdem::JointMode) == 1);
+                return view<uint8_t>(self, a.data(), a.size(), 1, false);
+            },
+            "(n_joints,) uint8 mode of a broken joint: 1 I, 2 II, 3 mixed, 0 not broken; "
+            "read-only view")
+        .def_property_readonly(
+            "joint_break_step",
+            [](py::object self) {
+                return scalar_view(self, self.cast<fdem::State&>().joints.break_step);
+            },
+            "(n_joints,) int64 step at which each joint broke (-1: not broken); read-only view")
+        .def_property_readonly(
+            "joint_work",
+            [](py::object self) {
+                return scalar_view(self, self.cast<fdem::State&>().joints.work);
+            },
+            "(n_joints,) work W_J done on each joint so far [J/m] (theory eq. 9.17); its sum "
+            "over broken joints per broken length is the audit's Gamma (eq. 9.20); read-only "
+            "view")
+        .def_property_readonly(
+            "tri_fragment",
+            [](py::object self) {
+                return scalar_view(self, self.cast<fdem::State&>().tri_fragment);
+            },
+            "(n_tris,) int32 fragment of each triangle: its smallest triangle id, connected over "
+            "shared nodes and joints that are not broken (theory §9, spec fracture.md §4.1); "
+            "empty without joints; read-only view");
 
     py::class_<fdem::Model>(mod, "Model",
                             "What does not change during a run. Array properties are read-only "
@@ -529,6 +580,21 @@ PYBIND11_MODULE(_fdem, mod) {
             "tri_body",
             [](py::object self) { return scalar_view(self, self.cast<fdem::Model&>().tri_body); },
             "(n_tris,) owning body id")
+        .def_property_readonly(
+            "joint_nodes",
+            [](py::object self) {
+                const auto& j = self.cast<fdem::Model&>().joints.nodes;
+                return view<int32_t>(self, j.data(), j.size(), 4, false);
+            },
+            "(n_joints, 4) node ids of each cohesive joint (int32; theory eq. 9.1: 0, 1 on one "
+            "triangle counter-clockwise, 3, 2 on the other; 0 faces 3 and 1 faces 2); empty "
+            "without [material.fracture]")
+        .def_property_readonly(
+            "joint_length0",
+            [](py::object self) {
+                return scalar_view(self, self.cast<fdem::Model&>().joints.length0);
+            },
+            "(n_joints,) reference length h_0 of each joint [m]")
         .def_property_readonly(
             "tri_material",
             [](py::object self) {
