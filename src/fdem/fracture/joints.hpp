@@ -2,6 +2,7 @@
 // the joint arrays themselves (Joints in Model, JointState in State) are public: fdem/fracture.hpp.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -59,6 +60,21 @@ struct JointSubset {
     std::vector<std::array<int32_t, 2>> ranges;  ///< [first, end) joints (entries not counted)
     std::vector<int32_t> gather;  ///< indices into Joints::gather_node of the owned nodes
 };
+
+/// fn(first, end) for every range of joints `sub` runs, ascending: its chunks run whole, then
+/// the ranges of the others (num_joints: of the model, for the last chunk's end).
+template <class Fn>
+void for_each_joint_range(const JointSubset& sub, int32_t num_joints, Fn&& fn) {
+    for (size_t k = 0; k < sub.chunks.size(); ++k) {
+        if (sub.counts[k]) {
+            const int32_t b = sub.chunks[k] * kJointChunk;
+            fn(b, std::min(num_joints, b + kJointChunk));
+        } else {
+            for (int32_t r = sub.range_begin[k]; r < sub.range_begin[k + 1]; ++r)
+                fn(sub.ranges[static_cast<size_t>(r)][0], sub.ranges[static_cast<size_t>(r)][1]);
+        }
+    }
+}
 
 /// The subset of process `rank` for node_owner[n] in [0, processes).
 JointSubset joint_subset(const Joints& J, std::span<const int32_t> node_owner, int32_t rank);

@@ -41,22 +41,10 @@ PartCounts own_counts(const Model& m, const State& s, const StepPlan& p) {
     // the joints it runs (its JointSubset: the chunks it sums whole, the ranges of the others)
     // that are not broken (a broken joint costs a status test)
     if (!m.joints.nodes.empty() && s.joints.status.size() == m.joints.nodes.size()) {
-        const JointSubset& js = p.joints.subset;
-        const int32_t nj = m.joints.num_joints();
-        auto count = [&](int32_t b, int32_t e) {
+        for_each_joint_range(p.joints.subset, m.joints.num_joints(), [&](int32_t b, int32_t e) {
             for (int32_t j = b; j < e; ++j)
                 c.joints_run += s.joints.status[static_cast<size_t>(j)] != JointStatus::Broken;
-        };
-        for (size_t k = 0; k < js.chunks.size(); ++k) {
-            if (js.counts[k]) {
-                const int32_t b = js.chunks[k] * kJointChunk;
-                count(b, std::min(nj, b + kJointChunk));
-            } else {
-                for (int32_t r = js.range_begin[k]; r < js.range_begin[k + 1]; ++r)
-                    count(js.ranges[static_cast<size_t>(r)][0],
-                          js.ranges[static_cast<size_t>(r)][1]);
-            }
-        }
+        });
     }
     const ContactTopology& ct = s.topology;
     const int32_t* owner = p.node_owner.data();

@@ -35,24 +35,13 @@ std::vector<NodeId> static_need(const Model& m, const StepPlan& p) {
         }
     }
     // the joints it runs (its JointSubset: the chunks it sums whole, the ranges of the others)
-    const JointSubset& js = p.joints.subset;
-    const int32_t nj = m.joints.num_joints();
     auto mark_joints = [&](int32_t b, int32_t e) {
         for (int32_t j = b; j < e; ++j) {
             for (const NodeId i : m.joints.nodes[static_cast<size_t>(j)])
                 mark[static_cast<size_t>(i)] = 1;
         }
     };
-    for (size_t k = 0; k < js.chunks.size(); ++k) {
-        if (js.counts[k]) {
-            const int32_t b = js.chunks[k] * kJointChunk;
-            mark_joints(b, std::min(nj, b + kJointChunk));
-        } else {
-            for (int32_t r = js.range_begin[k]; r < js.range_begin[k + 1]; ++r)
-                mark_joints(js.ranges[static_cast<size_t>(r)][0],
-                            js.ranges[static_cast<size_t>(r)][1]);
-        }
-    }
+    for_each_joint_range(p.joints.subset, m.joints.num_joints(), mark_joints);
     for (const Load& ld : m.loads) {  // evaluated by every process (x, v of its nodes)
         for (const NodeId i : ld.nodes)
             mark[static_cast<size_t>(i)] = 1;
