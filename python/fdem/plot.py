@@ -100,7 +100,11 @@ def energy_history(history, ax=None, title="energy balance"):
     for key, label in [("kinetic", "kinetic"), ("strain", "strain"), ("contact", "contact"),
                        ("work_gravity", "work of gravity"), ("work_external", "external work"),
                        ("dissipated_viscous", "viscous dissipation"),
-                       ("dissipated_contact", "contact dissipation"), ("total", "total (balance)")]:
+                       ("dissipated_contact", "contact dissipation"),
+                       # fracture (theory eqs. 9.18, 9.19): sim.energy's keys, history.csv's names
+                       ("joint", "joint energy"), ("energy.joint", "joint energy"),
+                       ("fracture", "fracture work"), ("energy.fracture", "fracture work"),
+                       ("total", "total (balance)")]:
         if key in h and np.any(np.asarray(h[key]) != 0):
             ax.plot(t, h[key], label=label, lw=2.0 if key == "total" else 1.2)
     ax.set_xlabel("time [s]")

@@ -54,3 +54,19 @@ def test_unknown_field_is_an_error():
     sim = fdem.Simulation.from_toml(example("03_contact_slide"))
     with pytest.raises(ValueError, match="unknown field 'stres'"):
         fdem.plot.tripcolor(sim, field="stres")
+
+
+def test_energy_history_of_a_fracturing_run(tmp_path):
+    """Example 11: the joint energy and the fracture work are plotted, from the recorder and from
+    history.csv (whose columns are energy.joint, energy.fracture)."""
+    sim = fdem.Simulation.from_toml(example("11_impact_fragmentation"))
+    sim.end_time = 4e-5
+    sim.open_output(str(tmp_path / "out"))
+    rec = fdem.EnergyRecorder()
+    sim.run(callback=rec, every=200)
+    for source in (rec, str(tmp_path / "out" / "history.csv")):
+        ax = fdem.plot.energy_history(source)
+        labels = [t.get_text() for t in ax.get_legend().get_texts()]
+        assert "joint energy" in labels and "fracture work" in labels, labels
+        ax.figure.savefig(tmp_path / "e.png", dpi=60)
+        png_ok(tmp_path / "e.png")
