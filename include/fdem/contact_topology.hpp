@@ -131,6 +131,10 @@ struct ContactTopology {
         return node_weld.empty() ? i : node_weld[static_cast<size_t>(i)];
     }
     bool welded() const { return !weld_group.empty(); }
+    /// body_cnode lists every body's contact nodes (build_body_contact_nodes() ran)
+    bool lists_contact_nodes() const {
+        return body_cnode_begin.size() == body_sub_begin.size() && body_cnode_begin.size() > 1;
+    }
     int32_t num_virtual() const { return static_cast<int32_t>(virt_parent.size()); }
     int32_t num_contact_nodes() const { return num_real_nodes + num_virtual(); }
     int32_t num_sub_tris() const { return static_cast<int32_t>(sub_tri.size()); }

@@ -449,8 +449,7 @@ void fill_contact_positions(const ContactTopology& ct, ContactState& cs, const V
     const size_t n = static_cast<size_t>(ct.num_contact_nodes());
     if (cs.xa.size() != n) cs.xa.resize(n);
     Vec2* xa = cs.xa.data();
-    const bool listed =
-        ct.body_cnode_begin.size() == ct.body_sub_begin.size() && ct.body_cnode_begin.size() > 1;
+    const bool listed = ct.lists_contact_nodes();
     if (list == nullptr || !listed) {
         std::copy(xc, xc + nr, xa);
         std::copy(cs.xv.begin(), cs.xv.end(), xa + nr);

@@ -675,21 +675,30 @@ void run_entry(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
     }
 }
 
-template <bool kScatter>
-void run_entry(const Joints& J, JointState& s, const Vec2* x, Vec2* f, const JointSubset& sub,
-               size_t k, int64_t step, bool energy) {
+// fn.template operator()<kEnergy, kMixed>() for the run-time flags: energy, and whether the
+// model has a MixedMode::Proportional law (then make_joint_state sized the per-mode history)
+template <class Fn>
+void with_flags(const JointState& s, bool energy, Fn&& fn) {
     const bool mixed = !s.dn_max.empty();
     if (energy) {
         if (mixed)
-            run_entry<true, kScatter, true>(J, s, x, f, sub, k, step);
+            fn.template operator()<true, true>();
         else
-            run_entry<true, kScatter, false>(J, s, x, f, sub, k, step);
+            fn.template operator()<true, false>();
     } else {
         if (mixed)
-            run_entry<false, kScatter, true>(J, s, x, f, sub, k, step);
+            fn.template operator()<false, true>();
         else
-            run_entry<false, kScatter, false>(J, s, x, f, sub, k, step);
+            fn.template operator()<false, false>();
     }
+}
+
+template <bool kScatter>
+void run_entry(const Joints& J, JointState& s, const Vec2* x, Vec2* f, const JointSubset& sub,
+               size_t k, int64_t step, bool energy) {
+    with_flags(s, energy, [&]<bool kEnergy, bool kMixed>() {
+        run_entry<kEnergy, kScatter, kMixed>(J, s, x, f, sub, k, step);
+    });
 }
 
 // node gather_node[g] adds its joints' forces in joint order (entries ascending in j),
@@ -722,19 +731,9 @@ inline void gather_joint_forces(const Joints& J, const JointState& s, Vec2* __re
 template <bool kScatter>
 void run_chunk(const Joints& J, JointState& s, const Vec2* x, Vec2* f, int32_t c, int64_t step,
                bool energy) {
-    // a model with a MixedMode::Proportional law sizes the per-mode history (make_joint_state)
-    const bool mixed = !s.dn_max.empty();
-    if (energy) {
-        if (mixed)
-            run_chunk<true, kScatter, true>(J, s, x, f, c, step);
-        else
-            run_chunk<true, kScatter, false>(J, s, x, f, c, step);
-    } else {
-        if (mixed)
-            run_chunk<false, kScatter, true>(J, s, x, f, c, step);
-        else
-            run_chunk<false, kScatter, false>(J, s, x, f, c, step);
-    }
+    with_flags(s, energy, [&]<bool kEnergy, bool kMixed>() {
+        run_chunk<kEnergy, kScatter, kMixed>(J, s, x, f, c, step);
+    });
 }
 
 }  // namespace

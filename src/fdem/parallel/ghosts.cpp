@@ -98,8 +98,7 @@ void ghost_receive_lists(const Model& m, const State& s, const StepPlan& p) {
     // welded (theory eq. 6.23), every copy of their sectors: what the narrow phase, the body box
     // and the welded positions and velocities read of it. Only these: a jointed specimen is the
     // contactor of the platens and of itself (rule X), and its inner nodes are never read there
-    const bool listed =
-        ct.body_cnode_begin.size() == ct.body_sub_begin.size() && ct.body_cnode_begin.size() > 1;
+    const bool listed = ct.lists_contact_nodes();
     auto mark_welded = [&](NodeId i) {
         mark[static_cast<size_t>(i)] = 1;
         if (!ct.welded()) return;
