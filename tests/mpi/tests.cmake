@@ -58,6 +58,18 @@ add_test(NAME mpi.setup.raster50
          COMMAND ${mpi_dir}/raster_scenario.sh ${PROJECT_SOURCE_DIR} ${raster50} 50)
 set_tests_properties(mpi.setup.raster50 PROPERTIES LABELS mpi FIXTURES_SETUP mpi_raster50
                      PASS_REGULAR_EXPRESSION "OK: ")
+# mpi.same_as_serial.<name>: same_as_serial.sh runs SCENARIO with one process, then under
+# mpirun with each of NPS (a list in one string), writing to ${mpi_out}/<out>; the arguments after
+# NPS go to fdem run, those after ENV to the environment of the test
+function(mpi_same_as_serial name scenario out nps)
+  cmake_parse_arguments(PARSE_ARGV 4 arg "" "" "ENV")
+  add_test(NAME mpi.same_as_serial.${name}
+           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV} ${arg_ENV}
+                   ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                   ${scenario} ${mpi_out}/${out} "${nps}" ${arg_UNPARSED_ARGUMENTS})
+  set_tests_properties(mpi.same_as_serial.${name} PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
+                       PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+endfunction()
 # the scenario each case below runs, by example folder: the raster for 04
 foreach(name 01_cantilever 03_contact_slide 05_composite 06_pressurised_ring 08_brazilian_disc
         11_impact_fragmentation)
@@ -70,22 +82,12 @@ foreach(case "01_cantilever:0.008" "03_contact_slide:0.002" "04_particles:2e-3"
   string(REPLACE ":" ";" case "${case}")
   list(GET case 0 name)
   list(GET case 1 end)
-  add_test(NAME mpi.same_as_serial.${name}
-           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
-                   ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                   ${scenario_${name}} ${mpi_out}/${name} "1 2 3 4" --end-time ${end})
-  set_tests_properties(mpi.same_as_serial.${name} PROPERTIES LABELS mpi TIMEOUT 300 PROCESSORS 2
-                       PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+  mpi_same_as_serial(${name} ${scenario_${name}} ${name} "1 2 3 4" --end-time ${end})
 endforeach()
 # the fracturing disc with the spec's joint law, mixed_mode = "independent" (theory §9.3a; the
 # examples above run the default "proportional" rule and its per-mode history), to 5e-5 s
-add_test(NAME mpi.same_as_serial.impact_independent
-         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
-                 ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                 ${PROJECT_SOURCE_DIR}/tests/data/impact_independent.toml
-                 ${mpi_out}/impact_independent "2 3" --end-time 5e-5)
-set_tests_properties(mpi.same_as_serial.impact_independent PROPERTIES LABELS mpi TIMEOUT 300
-                     PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+mpi_same_as_serial(impact_independent ${PROJECT_SOURCE_DIR}/tests/data/impact_independent.toml
+                   impact_independent "2 3" --end-time 5e-5)
 # the joints run by their owners (JointSubset, docs/parallel.md "Joints"): a ring of 5 joint
 # chunks fracturing (20 joints broken by 3e-5 s), by RCB on 2 and 3 processes and by a random
 # owner per node group on 4 (every chunk then shared: ranges of joints run by several processes)
@@ -93,45 +95,25 @@ foreach(part "rcb:2 3" "random:4")
   string(REPLACE ":" ";" part "${part}")
   list(GET part 0 rule)
   list(GET part 1 nps)
-  add_test(NAME mpi.same_as_serial.joint_chunks_${rule}
-           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
-                   ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                   ${mpi_dir}/impact_fine.toml ${mpi_out}/joint_chunks_${rule} "${nps}"
-                   --end-time 3e-5 --partition ${rule})
-  set_tests_properties(mpi.same_as_serial.joint_chunks_${rule} PROPERTIES LABELS mpi
-                       TIMEOUT 300 PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+  mpi_same_as_serial(joint_chunks_${rule} ${mpi_dir}/impact_fine.toml joint_chunks_${rule}
+                     "${nps}" --end-time 3e-5 --partition ${rule})
 endforeach()
 # Ghosts of a jointed model (docs/parallel.md "Joints"): process 0 holds only a far block and no
 # current position of the fracturing disc; cracks.csv, which it writes, needs the all-gather of a
 # step with breaks (without it this test fails); 12 joints broken by 1.4e-5 s
-add_test(NAME mpi.same_as_serial.ghosts_far_body
-         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
-                 ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                 ${mpi_dir}/ghosts_far_body.toml ${mpi_out}/ghosts_far_body "2"
-                 --end-time 1.4e-5 --partition ids)
-set_tests_properties(mpi.same_as_serial.ghosts_far_body PROPERTIES LABELS mpi TIMEOUT 300
-                     PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+mpi_same_as_serial(ghosts_far_body ${mpi_dir}/ghosts_far_body.toml ghosts_far_body "2"
+                   --end-time 1.4e-5 --partition ids)
 # Ghosts (spec D6): a kick, a follower pressure and a support reaction, whose nodes each
 # process reads beyond its own
-add_test(NAME mpi.same_as_serial.kick_load_support
-         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
-                 ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                 ${mpi_dir}/kick_load.toml ${mpi_out}/kick_load "2 3 4")
-set_tests_properties(mpi.same_as_serial.kick_load_support PROPERTIES LABELS mpi TIMEOUT 300
-                     PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+mpi_same_as_serial(kick_load_support ${mpi_dir}/kick_load.toml kick_load "2 3 4")
 # T3: the result does not depend on the partition: a random owner per node group (4 processes)
 # and contiguous node ids (3) instead of Zoltan's RCB
 foreach(part "random:4" "ids:3")
   string(REPLACE ":" ";" part "${part}")
   list(GET part 0 how)
   list(GET part 1 np)
-  add_test(NAME mpi.same_as_serial.partition_${how}
-           COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
-                   ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                   ${scenario_04_particles} ${mpi_out}/partition_${how} "${np}"
-                   --end-time 1e-3 --partition ${how})
-  set_tests_properties(mpi.same_as_serial.partition_${how} PROPERTIES LABELS mpi TIMEOUT 300
-                       PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+  mpi_same_as_serial(partition_${how} ${scenario_04_particles} partition_${how} "${np}"
+                     --end-time 1e-3 --partition ${how})
 endforeach()
 # D10 / T3 with load balancing: a new partition at every broad-phase search (Zoltan RCB of the
 # groups' current centres weighted by their estimated work, a new random draw, or weighted
@@ -181,12 +163,7 @@ add_test(NAME mpi.same_as_serial.saturated_pack_threads
 set_tests_properties(mpi.same_as_serial.saturated_pack_threads PROPERTIES LABELS mpi TIMEOUT 300
                      PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
 # D13: [output] merge = true: process 0 writes the serial .vtu frames instead of .pvtu pieces
-add_test(NAME mpi.same_as_serial.merged_frames
-         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
-                 ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                 ${mpi_dir}/merged.toml ${mpi_out}/merged "3")
-set_tests_properties(mpi.same_as_serial.merged_frames PROPERTIES LABELS mpi TIMEOUT 300
-                     PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+mpi_same_as_serial(merged_frames ${mpi_dir}/merged.toml merged "3")
 # Example 12 (issue #15 "Done when"): the example's own run script (make_raster.py, the generated
 # scenario, mpirun, the picture) at N = 20 (400 particles) on 4 processes to 4e-4 s (~880 steps;
 # grains touch from ~2e-4 s on) is bitwise the serial run of the scenario it generated: state hash,
@@ -209,12 +186,8 @@ set_tests_properties(example.12_particles_mpi_full PROPERTIES LABELS full TIMEOU
                      PROCESSORS 2 PASS_REGULAR_EXPRESSION
                      "OK: the example ran and wrote its .pvtu series")
 # T2: two OpenMP threads inside each of two processes
-add_test(NAME mpi.same_as_serial.two_threads_per_process
-         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV} OMP_NUM_THREADS=2
-                 ${mpi_dir}/same_as_serial.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
-                 ${ex}/03_contact_slide/scenario.toml ${mpi_out}/threads "2" --end-time 0.002)
-set_tests_properties(mpi.same_as_serial.two_threads_per_process PROPERTIES LABELS mpi TIMEOUT 300
-                     PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+mpi_same_as_serial(two_threads_per_process ${ex}/03_contact_slide/scenario.toml threads "2"
+                   --end-time 0.002 ENV OMP_NUM_THREADS=2)
 # T7 / D9: failures are the one-process run's: exit code, message (printed once) and
 # failure.vtu; an input error exits 2 on every process
 foreach(case "penetration:2:1" "crush:3:1" "bad_load:2:2")

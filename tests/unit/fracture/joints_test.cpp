@@ -415,34 +415,55 @@ TEST(Joints, CollapsedJointThrows) {
     EXPECT_THROW(joint_forces(j.J, j.s, j.x, j.f, false), SimulationError);
 }
 
+// A sheet of nx x ny cells of size kH, every internal edge a joint of the exact law with `mixed`,
+// and a random displacement mode per node drawn from rng: position(n) = x0 + 3 n amp mode softens
+// and breaks joints over ~30 calls
+struct ShakenSheet {
+    SplitMesh sm;
+    Joints J;
+    int32_t nn = 0;
+    std::vector<Vec2> mode;
+    double amp = 2 * kH * kFt / kP;
+
+    void position(int n, std::vector<Vec2>& x) const {
+        for (NodeId i = 0; i < nn; ++i)
+            x[static_cast<size_t>(i)] =
+                sm.x0[static_cast<size_t>(i)] + (amp * 3 * n) * mode[static_cast<size_t>(i)];
+    }
+};
+
+ShakenSheet shaken_sheet(int nx, int ny, MixedMode mixed, std::mt19937_64& rng) {
+    ShakenSheet sh;
+    const MeshData mesh = make_rectangle_mesh(0, 0, nx * kH, ny * kH, nx, ny, true);
+    sh.sm = split_mesh(mesh.nodes, mesh.tris);
+    sh.J.laws.push_back(make_joint_law(material(SofteningLength::Exact, mixed)));
+    add_edge_joints(sh.J, sh.sm.x0, sh.sm.tris, sh.sm.vertex, 0);
+    sh.nn = static_cast<int32_t>(sh.sm.x0.size());
+    finalize_joints(sh.J, sh.nn);
+    std::uniform_real_distribution<double> U(-1, 1);
+    sh.mode.resize(static_cast<size_t>(sh.nn));
+    for (auto& m : sh.mode)
+        m = {U(rng), U(rng)};
+    return sh;
+}
+
 // U8: 1, 2, 3 threads give bitwise the same forces, state and sums (several chunks, breaks)
 TEST(Joints, ThreadCountBitwise) {
     for (const MixedMode mixed : {MixedMode::Independent, MixedMode::Proportional}) {
         SCOPED_TRACE(mixed == MixedMode::Proportional ? "proportional" : "independent");
-        const MeshData mesh = make_rectangle_mesh(0, 0, 40 * kH, 40 * kH, 40, 40, true);
-        const SplitMesh sm = split_mesh(mesh.nodes, mesh.tris);
-        Joints J;
-        J.laws.push_back(make_joint_law(material(SofteningLength::Exact, mixed)));
-        add_edge_joints(J, sm.x0, sm.tris, sm.vertex, 0);
-        const int32_t nn = static_cast<int32_t>(sm.x0.size());
-        finalize_joints(J, nn);
-        ASSERT_GT(J.num_joints(), 2 * kJointChunk);
         std::mt19937_64 rng(11);
-        std::uniform_real_distribution<double> U(-1, 1);
-        std::vector<Vec2> mode(static_cast<size_t>(nn));
-        for (auto& m : mode)
-            m = {U(rng), U(rng)};
-        const double amp = 2 * kH * kFt / kP;
+        const ShakenSheet sh = shaken_sheet(40, 40, mixed, rng);
+        const Joints& J = sh.J;
+        const int32_t nn = sh.nn;
+        ASSERT_GT(J.num_joints(), 2 * kJointChunk);
         auto run = [&](int threads, std::vector<Vec2>& f_out, JointState& s,
                        std::vector<Real>& sums) {
             const int saved = omp_get_max_threads();
             omp_set_num_threads(threads);
             s = make_joint_state(J);
-            std::vector<Vec2> x = sm.x0;
+            std::vector<Vec2> x = sh.sm.x0;
             for (int n = 1; n <= 30; ++n) {
-                for (NodeId i = 0; i < nn; ++i)
-                    x[static_cast<size_t>(i)] = sm.x0[static_cast<size_t>(i)] +
-                                                (amp * 3 * n) * mode[static_cast<size_t>(i)];
+                sh.position(n, x);
                 f_out.assign(static_cast<size_t>(nn), Vec2{0.25, -0.5});
                 const JointPass p = joint_forces(J, s, x, f_out, n % 3 == 0, n);
                 sums.insert(sums.end(),
@@ -494,26 +515,13 @@ TEST(Joints, ThreadCountBitwise) {
 // node's force, the history of every joint a process runs, and the sums over the processes
 // (work, E_joint, breaks) are the serial kernel's bits; every chunk is summed by one process.
 TEST(JointSubset, OwnedForcesHistoryAndSumsAreSerialForAnyPartition) {
-    const MeshData mesh = make_rectangle_mesh(0, 0, 60 * kH, 40 * kH, 60, 40, true);
-    const SplitMesh sm = split_mesh(mesh.nodes, mesh.tris);
-    Joints J;
-    J.laws.push_back(make_joint_law(material(SofteningLength::Exact, MixedMode::Proportional)));
-    add_edge_joints(J, sm.x0, sm.tris, sm.vertex, 0);
-    const int32_t nn = static_cast<int32_t>(sm.x0.size());
+    std::mt19937_64 rng(5);  // (the mode, then the random owners below)
+    const ShakenSheet sh = shaken_sheet(60, 40, MixedMode::Proportional, rng);
+    const Joints& J = sh.J;
+    const SplitMesh& sm = sh.sm;
+    const int32_t nn = sh.nn;
     const int32_t nc = (J.num_joints() + kJointChunk - 1) / kJointChunk;
-    finalize_joints(J, nn);
     ASSERT_GE(nc, 4);
-    std::mt19937_64 rng(5);
-    std::uniform_real_distribution<double> U(-1, 1);
-    std::vector<Vec2> mode(static_cast<size_t>(nn));
-    for (auto& m : mode)
-        m = {U(rng), U(rng)};
-    const double amp = 2 * kH * kFt / kP;
-    const auto position = [&](int n, std::vector<Vec2>& x) {
-        for (NodeId i = 0; i < nn; ++i)
-            x[static_cast<size_t>(i)] =
-                sm.x0[static_cast<size_t>(i)] + (amp * 3 * n) * mode[static_cast<size_t>(i)];
-    };
     for (const int threads : {1, 2}) {
         const int saved = omp_get_max_threads();
         omp_set_num_threads(threads);
@@ -548,7 +556,7 @@ TEST(JointSubset, OwnedForcesHistoryAndSumsAreSerialForAnyPartition) {
                 int broken_steps = 0;
                 ExactSum running;
                 for (int n = 1; n <= 30; ++n) {
-                    position(n, x);
+                    sh.position(n, x);
                     const bool energy = n % 3 == 0;
                     f_serial.assign(static_cast<size_t>(nn), Vec2{0.25, -0.5});
                     const JointPass ref = joint_forces(J, serial, x, f_serial, energy, n);
@@ -582,19 +590,10 @@ TEST(JointSubset, OwnedForcesHistoryAndSumsAreSerialForAnyPartition) {
                                       st[r].mode[k] == serial.mode[k] &&
                                       st[r].break_step[k] == serial.break_step[k];
                         };
-                        const JointSubset& q = sub[r];
-                        for (size_t k = 0; k < q.chunks.size(); ++k) {
-                            if (q.counts[k]) {
-                                const int32_t b = q.chunks[k] * kJointChunk;
-                                for (int32_t j = b; j < std::min(J.num_joints(), b + kJointChunk);
-                                     ++j)
-                                    check(j);
-                            } else {
-                                for (int32_t g = q.range_begin[k]; g < q.range_begin[k + 1]; ++g)
-                                    for (int32_t j = q.ranges[g][0]; j < q.ranges[g][1]; ++j)
-                                        check(j);
-                            }
-                        }
+                        for_each_joint_range(sub[r], J.num_joints(), [&](int32_t b, int32_t e) {
+                            for (int32_t j = b; j < e; ++j)
+                                check(j);
+                        });
                         EXPECT_TRUE(history) << "step " << n << ", process " << r;
                     }
                     // the running sum of the work over the processes and E_joint: the serial
