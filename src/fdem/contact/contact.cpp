@@ -1197,8 +1197,6 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
     const int32_t me = plan.rank, procs = plan.procs;
     static_assert(kContactRecordBytes % sizeof(double) == 0);
     constexpr int kW = static_cast<int>(kContactRecordBytes / sizeof(double));
-    constexpr size_t kKey = sizeof(NodeId) + sizeof(BodyId);
-    static_assert(std::is_trivially_copyable_v<PairResult>);
 
     // 1. each own record's destinations, and the records per destination
     int* send_counts = sh.send_counts.data();
@@ -1256,10 +1254,16 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
         for (int32_t d = sh.dest_begin[static_cast<size_t>(p)];
              d < sh.dest_begin[static_cast<size_t>(p) + 1]; ++d) {
             const int32_t q = sh.dest[static_cast<size_t>(d)];
-            char* w = reinterpret_cast<char*>(sh.send.data() + at[q]);
-            std::memcpy(w, &cand_node[pr], sizeof(NodeId));
-            std::memcpy(w + sizeof(NodeId), &cand_body[pr], sizeof(BodyId));
-            std::memcpy(w + kKey, &out[k], sizeof(PairResult));
+            const PairResult& o = out[k];
+            ContactRecord rec;
+            rec.node = cand_node[pr];
+            rec.body = cand_body[pr];
+            rec.tri = o.tri;
+            rec.N[0] = o.N[0];
+            rec.N[1] = o.N[1];
+            rec.N[2] = o.N[2];
+            rec.f = o.f;
+            std::memcpy(sh.send.data() + at[q], &rec, sizeof rec);
             at[q] += kW;
         }
     }
@@ -1279,9 +1283,17 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
     {
         const char* r = reinterpret_cast<const char*>(sh.recv.data());
         for (size_t k = 0; k < n_in; ++k, r += kContactRecordBytes) {
-            std::memcpy(&rnode[k], r, sizeof(NodeId));
-            std::memcpy(&rbody[k], r + sizeof(NodeId), sizeof(BodyId));
-            std::memcpy(&rout[k], r + kKey, sizeof(PairResult));
+            ContactRecord rec;
+            std::memcpy(&rec, r, sizeof rec);
+            rnode[k] = rec.node;
+            rbody[k] = rec.body;
+            // (what the adds read: tri, N and f; the rest of a PairResult stays with the owner)
+            PairResult& o = rout[k];
+            o.tri = rec.tri;
+            o.N[0] = rec.N[0];
+            o.N[1] = rec.N[1];
+            o.N[2] = rec.N[2];
+            o.f = rec.f;
         }
     }
 

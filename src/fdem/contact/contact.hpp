@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <span>
+#include <type_traits>
 #include <utility>
 #ifdef __SSE2__
 #include <emmintrin.h>
@@ -40,7 +41,19 @@ void add_contact_forces(const Model& m, State& s);
 /// the pair's forces to a node (add_contact_forces() with a plan). Keyed by (node, body), the
 /// order of the serial pair loop, not by an index into a candidate list: each process holds
 /// only its own targets' candidates.
-inline constexpr size_t kContactRecordBytes = sizeof(NodeId) + sizeof(BodyId) + sizeof(PairResult);
+/// What the receiver adds (eq. 20): the key, the located sub-triangle, its barycentric
+/// coordinates and the force. The pair's history stays with its owner (56 bytes; until
+/// 2026-12-03 a record was the key and the whole PairResult, 152 bytes).
+struct ContactRecord {
+    NodeId node = kNone;  ///< target node
+    BodyId body = kNone;  ///< contactor body
+    int32_t tri = -1;     ///< PairResult::tri
+    int32_t pad = 0;      ///< (zero: every byte of a record is defined)
+    Real N[3] = {0, 0, 0};
+    Vec2 f;
+};
+static_assert(sizeof(ContactRecord) == 56 && std::is_trivially_copyable_v<ContactRecord>);
+inline constexpr size_t kContactRecordBytes = sizeof(ContactRecord);
 
 /// The contact sums a distributed step reduces with its other exact sums (ContactShare::sums).
 inline constexpr int kContactSums = 5;

@@ -328,8 +328,11 @@ TEST(Decompose, JointsRunAreThoseOfThePartsSubset) {
             EXPECT_EQ(parts[static_cast<size_t>(r)].joints_run, expect) << r;
             sum += parts[static_cast<size_t>(r)].joints_run;
         }
-        if (P == 1) EXPECT_EQ(sum, nj - 1);
-        if (P > 1) EXPECT_GT(sum, nj - 1);  // the joints at the cuts run by each side
+        if (P == 1) {
+            EXPECT_EQ(sum, nj - 1);
+        } else {
+            EXPECT_GT(sum, nj - 1);  // the joints at the cuts run by each side
+        }
     }
 }
 
