@@ -188,6 +188,83 @@ void print_fracture(const fdem::Scenario& sc) {
 
 // Broken joints per mode, W_frac and the fracture-energy audit (docs/theory.md eq. 9.20):
 // Gamma = W_frac / broken length, and per mode the work of its broken joints over their length.
+// The `timing` table of `fdem run`: wall seconds per phase of the steps (fdem::StepTiming) and
+// the rest of the run's wall time after the load (output, checks, checkpoints, rebalancing),
+// each as min / mean / max over the processes (one process: all three the same).
+struct TimingTable {
+    bool valid = false;
+    int procs = 1;
+    int64_t steps = 0;
+    // rows: the phases, then "other"; columns min, mean, max
+    double t[fdem::kStepPhases + 1][3] = {};
+    double wall_mean = 0;
+};
+
+TimingTable timing_table(const fdem::StepTiming& st, double wall, const fdem::Comm* comm) {
+    constexpr int n = fdem::kStepPhases + 1;
+    double mine[n + 1];
+    double phases = 0;
+    for (int k = 0; k < fdem::kStepPhases; ++k) {
+        mine[k] = st.seconds[k];
+        phases += st.seconds[k];
+    }
+    mine[n - 1] = std::max(0.0, wall - phases);
+    mine[n] = wall;
+    TimingTable tt;
+    tt.valid = true;
+    tt.steps = st.steps;
+    double lo[n + 1], hi[n + 1];
+    fdem::ExactSum sum[n + 1];
+    for (int k = 0; k <= n; ++k) {
+        lo[k] = mine[k];
+        hi[k] = -mine[k];
+        sum[k].add(mine[k]);
+    }
+    if (comm != nullptr) {
+        comm->min(lo, n + 1);
+        comm->min(hi, n + 1);
+        comm->sum(sum, n + 1);
+        tt.procs = comm->size();
+    }
+    for (int k = 0; k < n; ++k) {
+        tt.t[k][0] = lo[k];
+        tt.t[k][1] = sum[k].value() / tt.procs;
+        tt.t[k][2] = -hi[k];
+    }
+    tt.wall_mean = sum[n].value() / tt.procs;
+    return tt;
+}
+
+void print_timing(const TimingTable& tt) {
+    if (!tt.valid || tt.steps == 0) return;
+    constexpr int n = fdem::kStepPhases + 1;
+    const auto name = [](int k) {
+        return k < fdem::kStepPhases ? fdem::kStepPhaseNames[k] : "other";
+    };
+    const double scale = tt.wall_mean > 0 ? 100.0 / tt.wall_mean : 0.0;
+    if (tt.procs == 1) {
+        fmt::print(
+            "timing     wall seconds of the {} steps by phase (% of {:.4g} s); other = output, "
+            "checks, checkpoints\n",
+            tt.steps, tt.wall_mean);
+        for (int k = 0; k < n; ++k) {
+            if (k == static_cast<int>(fdem::StepPhase::Communication)) continue;
+            fmt::print("           {:<14} {:10.4g} s {:6.1f} %\n", name(k), tt.t[k][1],
+                       scale * tt.t[k][1]);
+        }
+        return;
+    }
+    fmt::print(
+        "timing     wall seconds of the {} steps by phase over {} processes: min / mean / "
+        "max (% of the mean {:.4g} s); communication includes the waits for the other "
+        "processes\n",
+        tt.steps, tt.procs, tt.wall_mean);
+    for (int k = 0; k < n; ++k) {
+        fmt::print("           {:<14} {:10.4g} {:10.4g} {:10.4g} s {:6.1f} %\n", name(k),
+                   tt.t[k][0], tt.t[k][1], tt.t[k][2], scale * tt.t[k][1]);
+    }
+}
+
 void print_fracture_summary(const fdem::Model& m, const fdem::State& s) {
     const fdem::Joints& J = m.joints;
     const fdem::JointState& js = s.joints;
@@ -467,6 +544,10 @@ int run(const RunOptions& opt) {
         }
         return true;
     };
+    // wall time per phase of the steps (the `timing` table below; no result depends on it;
+    // ~10 clock reads per step, none with --quiet)
+    sim.state().timing.on = !opt.quiet;
+    sim.state().timing.reset();
     try {
         const fdem::RunResult res =
             sim.run_to_end(tty || batch ? progress : fdem::Simulation::StepCallback{});
@@ -531,6 +612,8 @@ int run(const RunOptions& opt) {
         }
     }
     const uint64_t hash = sim.state_hash();
+    // (collective in a distributed run: every process takes part, process 0 prints)
+    const TimingTable timing = opt.quiet ? TimingTable{} : timing_table(s.timing, wall, g_comm);
     if (!opt.quiet) {
         const double steps = static_cast<double>(s.step - start_step);
         fmt::print("done       {} steps in {:.2f} s ({:.3g} steps/s, {:.3g} element-steps/s)\n",
@@ -555,6 +638,7 @@ int run(const RunOptions& opt) {
                 c.candidates, c.triangle_couples ? "triangle couples" : "(node, body) pairs",
                 c.in_contact, c.broad_phase_runs);
         }
+        print_timing(timing);
         fmt::print("output     {} ({} frames; open series.pvd in ParaView)\n", out,
                    sim.frames_written());
         fmt::print("state      step {}, t = {:.6g} s, hash {:016x} (x, v, energies)\n", s.step,

@@ -9,6 +9,7 @@
 #include "fdem/exact_sum.hpp"
 #include "fdem/fracture.hpp"
 #include "fdem/math.hpp"
+#include "fdem/step_timing.hpp"
 
 namespace fdem {
 
@@ -109,6 +110,10 @@ struct State {
     /// saved in checkpoints: a function of the Model (and, with fracture, of the saved joint
     /// state), rebuilt on restore. docs/architecture.md "The contact topology".
     ContactTopology topology;
+
+    /// Wall time per phase of the steps (step_timing.hpp): read only when timing.on, which no
+    /// result depends on; not saved in checkpoints.
+    StepTiming timing;
 };
 
 }  // namespace fdem

@@ -144,6 +144,12 @@ add_test(NAME cli.run_prints_contact_pairs
                  ${cli_out}/contact_pairs)
 set_tests_properties(cli.run_prints_contact_pairs PROPERTIES LABELS input
                      PASS_REGULAR_EXPRESSION "OK: contact pairs line")
+# the timing table of the run summary (State::timing): rows, sums, and no bit changed by it
+add_test(NAME cli.run_prints_timing
+         COMMAND ${cli_dir}/timing.sh $<TARGET_FILE:fdem_cli> ${cli_dir}/restart.toml
+                 ${cli_out}/timing 0.025)
+set_tests_properties(cli.run_prints_timing PROPERTIES LABELS input
+                     PASS_REGULAR_EXPRESSION "OK: timing table")
 # fdem decompose (issue #15, docs/parallel.md): bad arguments exit 2 naming the option and the
 # value; a run prints one summary line per part count and writes the CSV
 add_test(NAME cli.decompose_zero_parts_exits_2

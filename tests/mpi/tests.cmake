@@ -285,6 +285,16 @@ foreach(case "history:2" "checkpoint:3")
                        PASS_REGULAR_EXPRESSION "OK: an output error of process 0 stops every")
 endforeach()
 
+# the timing table of a distributed run: min / mean / max over the processes, with the
+# communication row (tests/cli/timing.sh)
+add_test(NAME mpi.run_prints_timing
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${PROJECT_SOURCE_DIR}/tests/cli/timing.sh $<TARGET_FILE:fdem_cli>
+                 ${PROJECT_SOURCE_DIR}/tests/cli/restart.toml ${mpi_out}/timing 0.025
+                 ${MPIEXEC_EXECUTABLE} 2)
+set_tests_properties(mpi.run_prints_timing PROPERTIES LABELS mpi TIMEOUT 120 PROCESSORS 2
+                     PASS_REGULAR_EXPRESSION "OK: timing table")
+
 # every particle test reads the raster written by mpi.setup.raster50
 set_tests_properties(mpi.same_as_serial.04_particles mpi.same_as_serial.partition_random
                      mpi.same_as_serial.partition_ids mpi.same_as_serial.rebalance_04_rcb

@@ -1191,7 +1191,12 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
                    const Comm& comm, State& s, const int32_t* own_k, int32_t n_own,
                    const int32_t* in_contact, const PairResult* out) {
     const ContactShare& sh = plan.contact;
-    if (!sh.dest_valid) plan_record_exchange(m, s, plan, comm);
+    StepTiming& timing = s.timing;
+    if (!sh.dest_valid) {
+        timing.mark(StepPhase::ContactApply);
+        plan_record_exchange(m, s, plan, comm);
+        timing.mark(StepPhase::Communication);
+    }
     const NodeId* cand_node = s.contact.cand.node.data();
     const BodyId* cand_body = s.contact.cand.body.data();
     const int32_t me = plan.rank, procs = plan.procs;
@@ -1267,8 +1272,10 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
             at[q] += kW;
         }
     }
+    timing.mark(StepPhase::ContactApply);
     comm.exchange_sized(sh.neighbours, sh.send.data(), sh.send_counts, sh.send_displs, sh.recv,
                         sh.recv_counts, sh.recv_displs);
+    timing.mark(StepPhase::Communication);
     int n_recv = 0;
     for (const int32_t q : sh.neighbours)
         n_recv += sh.recv_counts[static_cast<size_t>(q)];
@@ -1477,15 +1484,19 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     if (cs.need_rebuild) {
         if (ghosts) {
             // the broad phase reads every contact node, and the new ghosts' v is read below
+            s.timing.mark(StepPhase::BroadPhase);
             gather_nodes(s.x.data(), *plan, *comm);
             gather_nodes(s.v.data(), *plan, *comm);
+            s.timing.mark(StepPhase::Communication);
             update_virtual_nodes(m, s);
         }
         if (plan != nullptr) {
             // this process's targets only (a subsequence of the serial list, spec D5.3)
             find_candidates(m, ct, x, xc, xv, cs.cand, cs.broad,
                             TargetOwner{plan->node_owner.data(), plan->rank});
+            s.timing.mark(StepPhase::BroadPhase);
             share->total_candidates = comm->sum(static_cast<int64_t>(cs.cand.node.size()));
+            s.timing.mark(StepPhase::Communication);
         } else {
             find_candidates(m, ct, x, xc, xv, cs.cand, cs.broad);
         }
@@ -1494,7 +1505,11 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             share->boxes_valid = false;
             share->dest_valid = false;
         }
-        if (ghosts) rebuild_ghosts(m, s, *plan, *comm);
+        if (ghosts) {
+            s.timing.mark(StepPhase::BroadPhase);
+            rebuild_ghosts(m, s, *plan, *comm);
+            s.timing.mark(StepPhase::Communication);
+        }
         cs.need_rebuild = false;
         cs.skin_used = 0;
         ++cs.rebuilds;
@@ -1539,6 +1554,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     const int32_t box_count = static_cast<int32_t>(box_bodies.size());
     // the contactor positions the locate loop reads: those of the listed bodies only
     fill_contact_positions(ct, cs, xc, box_list, box_count);
+    s.timing.mark(StepPhase::BroadPhase);
     {
         const ContactState& ccs = cs;
         const NodeId* cand_node = cs.cand.node.data();
@@ -1587,6 +1603,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         }
     }
 
+    s.timing.mark(StepPhase::NarrowPhase);
     // the pairs in contact, as spans [span_begin, + chunk_count) of in_contact and out in pair
     // order: the chunks' fronts (a distributed run: its own pairs; the other processes' records
     // come in apply_records())

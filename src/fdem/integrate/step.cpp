@@ -332,10 +332,14 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     Vec2* v = s.v.data();
     Vec2* f = s.f.data();
     const bool first = s.step == 0;
+    StepTiming& timing = s.timing;  // (wall time per phase; no result reads it)
+    timing.begin();
     if (first) apply_initial_supports(m, s);  // controls changed since make_state()
     // ghost lists after distribute() or a restore (every node is current then)
-    if (plan != nullptr && plan->ghosts.active && plan->ghosts.dirty)
+    if (plan != nullptr && plan->ghosts.active && plan->ghosts.dirty) {
         rebuild_ghosts(m, s, *plan, *comm);
+        timing.mark(StepPhase::Communication);
+    }
 
     // 0. load forces F^n on x^n, and the half of their trapezoidal work over [x^{n-1}, x^n]
     // that F^n does: 1/2 F^n . dt v^{n-1/2} (theory eq. 4.7), with v^{n-1/2} before any kick
@@ -351,8 +355,10 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
     // 1. kicks (a distributed run with ghosts: they read and write every node of their
     // bodies, so x and v are all-gathered first on the steps that have one)
     if (plan != nullptr && plan->ghosts.active && kick_due(m, s)) {
+        timing.mark(StepPhase::Elements);
         gather_nodes(x, *plan, *comm);
         gather_nodes(v, *plan, *comm);
+        timing.mark(StepPhase::Communication);
     }
     apply_kicks(m, s);
 
@@ -396,11 +402,13 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         // sums at the end of the step (one reduction)
         element_sums[0] = sp.strain_energy;
         element_sums[1] = sp.viscous_power;
+        timing.mark(StepPhase::Elements);
         // the smallest det F over the processes, ties to the smallest chunk: the serial one;
         // with the skin trigger's max |v|^2 of contact (v is final for this step's contact
         // after the kicks) in one reduction (spec D8.3)
         double mins[2] = {sp.min_jacobian, -max_speed2(v, plan->own_runs)};
         comm->min(mins, 2);
+        timing.mark(StepPhase::Communication);
         pass.min_jacobian = mins[0];
         plan->max_speed2 = -mins[1];
         if (!(pass.min_jacobian > 0)) {  // the same branch on every process
@@ -412,6 +420,7 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
             gather_forces(s, *plan, *comm);
         }
     }
+    timing.mark(StepPhase::Elements);  // (a distributed step: the branch above, if taken)
     if (pass.min_jacobian_tri != kNone && !(pass.min_jacobian > 0)) {
         const TriId t = pass.min_jacobian_tri;
         throw SimulationError(
@@ -433,11 +442,13 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
             joint_forces(m.joints, s.joints, s.x, s.f, s.need_energy, plan->joints.subset, s.step);
         plan->joints.work.add(jp.work);
         joint_elastic = jp.elastic;
+        timing.mark(StepPhase::Joints);
         // the smallest bad joint (the serial one: the first in joint order) and whether any
         // joint broke, in one reduction
         double r[2] = {jp.bad >= 0 ? static_cast<double>(jp.bad) : kNoJoint,
                        -static_cast<double>(jp.newly_broken)};
         comm->min(r, 2);
+        timing.mark(StepPhase::Communication);
         if (r[0] < kNoJoint) {
             gather_forces(s, *plan, *comm);  // failure.vtu: the serial forces at this point
             throw_joint_failure(static_cast<int32_t>(r[0]), s.step, s.time);
@@ -448,7 +459,9 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
             // (it reads no positions: sectors, fragments and topology come from the mesh and
             // the joints' status; the contact's broad phase below all-gathers x and v first)
             share_breaks(m, s, *plan, *comm);
+            timing.mark(StepPhase::Communication);
             process_breaks(m, s);
+            timing.mark(StepPhase::Joints);
         }
     } else if (!m.joints.nodes.empty()) {
         const JointPass jp =
@@ -459,14 +472,17 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         }
         // 3c. break processing (spec fracture.md §7): serial, only on steps with breaks
         if (jp.newly_broken > 0) process_breaks(m, s);
+        timing.mark(StepPhase::Joints);
     }
 
-    // 4. contact forces (writes s.f, s.f_contact, s.energy.contact, dissipated_contact)
+    // 4. contact forces (writes s.f, s.f_contact, s.energy.contact, dissipated_contact; marks
+    // its own phases)
     if (plan == nullptr) {
         add_contact_forces(m, s);
     } else {
         add_contact_forces(m, s, *plan, *comm);  // the pairs of the owned targets
     }
+    timing.mark(StepPhase::ContactApply);
     if (loaded) add_load_forces(m, load_f, f);
 
     // remember v^{n-1/2} and x^n of supported nodes (preallocated scratch): their reaction needs
@@ -602,6 +618,7 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         }
     }
 
+    timing.mark(StepPhase::NodeUpdate);
     if (plan != nullptr) {
         // the energy sums over the processes in one reduction (else all are zero everywhere),
         // with the contact sums of the step (energies, pairs in contact, lost pairs: the ghost
@@ -661,6 +678,7 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
                 s.bc_reaction[static_cast<size_t>(plan->bc_order[j])] = {buf[2 * j],
                                                                          buf[2 * j + 1]};
         }
+        timing.mark(StepPhase::Communication);
     }
     const Real support_work = support_work_sum.value();
     s.energy.time = s.time;
@@ -691,6 +709,7 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
 
     s.time += dt;
     ++s.step;
+    timing.end_step(StepPhase::NodeUpdate);
 }
 
 }  // namespace

@@ -668,7 +668,8 @@ void Simulation::restore_checkpoint(const std::string& path) {
     RunProgress prog;
     read_checkpoint(path, I.model, s, prog);
     // copy-assignment keeps the storage of the equally sized arrays (x, v, f, ...): views of
-    // them stay valid
+    // them stay valid; the step timing goes on (it is no part of the state of the run)
+    s.timing = I.state.timing;
     I.state = s;
     I.prog = std::move(prog);
     I.restarted = true;
