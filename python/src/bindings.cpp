@@ -16,6 +16,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -798,6 +799,30 @@ PYBIND11_MODULE(_fdem, mod) {
             "energies of the last step [J/m]: kinetic, strain, contact, work_gravity, "
             "work_external, dissipated_viscous, dissipated_contact, total (balance: total "
             "stays constant) and the time they belong to")
+        .def_property(
+            "timing_on", [](const PySimulation& s) { return s.sim.state().timing.on; },
+            [](PySimulation& s, bool on) { s.sim.state().timing.on = on; },
+            "record the wall time of each phase of the steps (sim.timing; off by default: the "
+            "step then reads no clock). No result depends on it.")
+        .def_property_readonly(
+            "timing",
+            [](const PySimulation& s) {
+                const fdem::StepTiming& t = s.sim.state().timing;
+                py::dict d;
+                d["steps"] = t.steps;
+                for (int k = 0; k < fdem::kStepPhases; ++k) {
+                    std::string key = fdem::kStepPhaseNames[k];
+                    std::replace(key.begin(), key.end(), ' ', '_');
+                    d[py::str(key)] = t.seconds[k];
+                }
+                return d;
+            },
+            "wall seconds per phase of the steps timed since timing_on was set or "
+            "reset_timing() (docs/output.md \"Console output\": elements, joints, broad_phase, "
+            "narrow_phase, contact_apply, node_update, communication) and their number, steps")
+        .def(
+            "reset_timing", [](PySimulation& s) { s.sim.state().timing.reset(); },
+            "zero sim.timing")
         .def_property_readonly(
             "warnings",
             [](const PySimulation& s) {
