@@ -190,49 +190,78 @@ void print_fracture(const fdem::Scenario& sc) {
 // Gamma = W_frac / broken length, and per mode the work of its broken joints over their length.
 // The `timing` table of `fdem run`: wall seconds per phase of the steps (fdem::StepTiming) and
 // the rest of the run's wall time after the load (output, checks, checkpoints, rebalancing),
-// each as min / mean / max over the processes (one process: all three the same).
+// each as min / mean / max over the processes (one process: all three the same); rows holds
+// every process's seconds (timing.csv).
 struct TimingTable {
+    static constexpr int kCols = fdem::kStepPhases + 2;  ///< the phases, other, wall
     bool valid = false;
     int procs = 1;
     int64_t steps = 0;
     // rows: the phases, then "other"; columns min, mean, max
     double t[fdem::kStepPhases + 1][3] = {};
     double wall_mean = 0;
+    std::vector<double> rows;  ///< process r's kCols seconds at r * kCols
 };
 
 TimingTable timing_table(const fdem::StepTiming& st, double wall, const fdem::Comm* comm) {
-    constexpr int n = fdem::kStepPhases + 1;
-    double mine[n + 1];
+    constexpr int kCols = TimingTable::kCols;
+    TimingTable tt;
+    tt.valid = true;
+    tt.steps = st.steps;
+    tt.procs = comm != nullptr ? comm->size() : 1;
+    const int rank = comm != nullptr ? comm->rank() : 0;
+    tt.rows.assign(static_cast<size_t>(tt.procs) * kCols, 0.0);
+    double* mine = tt.rows.data() + static_cast<size_t>(rank) * kCols;
     double phases = 0;
     for (int k = 0; k < fdem::kStepPhases; ++k) {
         mine[k] = st.seconds[k];
         phases += st.seconds[k];
     }
-    mine[n - 1] = std::max(0.0, wall - phases);
-    mine[n] = wall;
-    TimingTable tt;
-    tt.valid = true;
-    tt.steps = st.steps;
-    double lo[n + 1], hi[n + 1];
-    fdem::ExactSum sum[n + 1];
-    for (int k = 0; k <= n; ++k) {
-        lo[k] = mine[k];
-        hi[k] = -mine[k];
-        sum[k].add(mine[k]);
-    }
+    mine[kCols - 2] = std::max(0.0, wall - phases);
+    mine[kCols - 1] = wall;
     if (comm != nullptr) {
-        comm->min(lo, n + 1);
-        comm->min(hi, n + 1);
-        comm->sum(sum, n + 1);
-        tt.procs = comm->size();
+        std::vector<int> counts(static_cast<size_t>(tt.procs), kCols), displs(counts.size());
+        for (size_t r = 0; r < displs.size(); ++r)
+            displs[r] = static_cast<int>(r) * kCols;
+        comm->allgatherv(tt.rows.data(), counts, displs);
     }
-    for (int k = 0; k < n; ++k) {
-        tt.t[k][0] = lo[k];
-        tt.t[k][1] = sum[k].value() / tt.procs;
-        tt.t[k][2] = -hi[k];
+    for (int k = 0; k < kCols; ++k) {
+        double lo = tt.rows[static_cast<size_t>(k)], hi = lo, sum = 0;
+        for (int r = 0; r < tt.procs; ++r) {
+            const double v = tt.rows[static_cast<size_t>(r) * kCols + static_cast<size_t>(k)];
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+            sum += v;
+        }
+        if (k == kCols - 1) {
+            tt.wall_mean = sum / tt.procs;
+        } else {
+            tt.t[k][0] = lo;
+            tt.t[k][1] = sum / tt.procs;
+            tt.t[k][2] = hi;
+        }
     }
-    tt.wall_mean = sum[n].value() / tt.procs;
     return tt;
+}
+
+// timing.csv: one row per process (rank, steps, the seconds of each phase, other, wall)
+std::string timing_csv(const TimingTable& tt) {
+    std::string csv = "rank,steps";
+    for (int k = 0; k < fdem::kStepPhases; ++k) {
+        std::string name = fdem::kStepPhaseNames[k];
+        std::replace(name.begin(), name.end(), ' ', '_');
+        csv += "," + name;
+    }
+    csv += ",other,wall\n";
+    for (int r = 0; r < tt.procs; ++r) {
+        csv += fmt::format("{},{}", r, tt.steps);
+        for (int k = 0; k < TimingTable::kCols; ++k)
+            csv += fmt::format(
+                ",{:.9g}",
+                tt.rows[static_cast<size_t>(r) * TimingTable::kCols + static_cast<size_t>(k)]);
+        csv += "\n";
+    }
+    return csv;
 }
 
 void print_timing(const TimingTable& tt) {
@@ -614,6 +643,14 @@ int run(const RunOptions& opt) {
     const uint64_t hash = sim.state_hash();
     // (collective in a distributed run: every process takes part, process 0 prints)
     const TimingTable timing = opt.quiet ? TimingTable{} : timing_table(s.timing, wall, g_comm);
+    if (timing.valid && (g_comm == nullptr || g_comm->rank() == 0)) {
+        const std::string path = (std::filesystem::path(out) / "timing.csv").string();
+        const std::string csv = timing_csv(timing);
+        std::FILE* fp = std::fopen(path.c_str(), "w");
+        if (fp == nullptr || std::fputs(csv.c_str(), fp) < 0 || std::fclose(fp) != 0) {
+            fmt::print(stderr, "warning: cannot write {}: {}\n", path, std::strerror(errno));
+        }
+    }
     if (!opt.quiet) {
         const double steps = static_cast<double>(s.step - start_step);
         fmt::print("done       {} steps in {:.2f} s ({:.3g} steps/s, {:.3g} element-steps/s)\n",
@@ -638,7 +675,7 @@ int run(const RunOptions& opt) {
                 c.candidates, c.triangle_couples ? "triangle couples" : "(node, body) pairs",
                 c.in_contact, c.broad_phase_runs);
         }
-        print_timing(timing);
+        print_timing(timing);  // (and timing.csv: one row per process)
         fmt::print("output     {} ({} frames; open series.pvd in ParaView)\n", out,
                    sim.frames_written());
         fmt::print("state      step {}, t = {:.6g} s, hash {:016x} (x, v, energies)\n", s.step,
