@@ -186,27 +186,25 @@ void print_fracture(const fdem::Scenario& sc) {
                std::isfinite(dt_c) ? fmt::format("{:.4g} s", dt_c) : std::string("none"));
 }
 
-// Broken joints per mode, W_frac and the fracture-energy audit (docs/theory.md eq. 9.20):
-// Gamma = W_frac / broken length, and per mode the work of its broken joints over their length.
-// The `timing` table of `fdem run`: wall seconds per phase of the steps (fdem::StepTiming) and
-// the rest of the run's wall time after the load (output, checks, checkpoints, rebalancing),
-// each as min / mean / max over the processes (one process: all three the same); rows holds
-// every process's seconds (timing.csv).
+// The `timing` table of `fdem run`: wall seconds per phase of the steps (fdem::StepTiming), the
+// rest of the run's wall time after the load ("other": output, checks, checkpoints,
+// rebalancing) and that wall time, one row per process (timing.csv); the table prints min /
+// mean / max over the rows (one process: all three the same).
 struct TimingTable {
     static constexpr int kCols = fdem::kStepPhases + 2;  ///< the phases, other, wall
-    bool valid = false;
-    int procs = 1;
+    static constexpr int kOther = fdem::kStepPhases, kWall = fdem::kStepPhases + 1;
+    int procs = 0;  ///< 0: not timed (--quiet)
     int64_t steps = 0;
-    // rows: the phases, then "other"; columns min, mean, max
-    double t[fdem::kStepPhases + 1][3] = {};
-    double wall_mean = 0;
     std::vector<double> rows;  ///< process r's kCols seconds at r * kCols
+    double at(int r, int k) const {
+        return rows[static_cast<size_t>(r) * kCols + static_cast<size_t>(k)];
+    }
 };
 
+// every process's row, on every process (collective in a distributed run)
 TimingTable timing_table(const fdem::StepTiming& st, double wall, const fdem::Comm* comm) {
     constexpr int kCols = TimingTable::kCols;
     TimingTable tt;
-    tt.valid = true;
     tt.steps = st.steps;
     tt.procs = comm != nullptr ? comm->size() : 1;
     const int rank = comm != nullptr ? comm->rank() : 0;
@@ -217,29 +215,13 @@ TimingTable timing_table(const fdem::StepTiming& st, double wall, const fdem::Co
         mine[k] = st.seconds[k];
         phases += st.seconds[k];
     }
-    mine[kCols - 2] = std::max(0.0, wall - phases);
-    mine[kCols - 1] = wall;
+    mine[TimingTable::kOther] = std::max(0.0, wall - phases);
+    mine[TimingTable::kWall] = wall;
     if (comm != nullptr) {
         std::vector<int> counts(static_cast<size_t>(tt.procs), kCols), displs(counts.size());
         for (size_t r = 0; r < displs.size(); ++r)
             displs[r] = static_cast<int>(r) * kCols;
         comm->allgatherv(tt.rows.data(), counts, displs);
-    }
-    for (int k = 0; k < kCols; ++k) {
-        double lo = tt.rows[static_cast<size_t>(k)], hi = lo, sum = 0;
-        for (int r = 0; r < tt.procs; ++r) {
-            const double v = tt.rows[static_cast<size_t>(r) * kCols + static_cast<size_t>(k)];
-            lo = std::min(lo, v);
-            hi = std::max(hi, v);
-            sum += v;
-        }
-        if (k == kCols - 1) {
-            tt.wall_mean = sum / tt.procs;
-        } else {
-            tt.t[k][0] = lo;
-            tt.t[k][1] = sum / tt.procs;
-            tt.t[k][2] = hi;
-        }
     }
     return tt;
 }
@@ -256,44 +238,70 @@ std::string timing_csv(const TimingTable& tt) {
     for (int r = 0; r < tt.procs; ++r) {
         csv += fmt::format("{},{}", r, tt.steps);
         for (int k = 0; k < TimingTable::kCols; ++k)
-            csv += fmt::format(
-                ",{:.9g}",
-                tt.rows[static_cast<size_t>(r) * TimingTable::kCols + static_cast<size_t>(k)]);
+            csv += fmt::format(",{:.9g}", tt.at(r, k));
         csv += "\n";
     }
     return csv;
 }
 
 void print_timing(const TimingTable& tt) {
-    if (!tt.valid || tt.steps == 0) return;
-    constexpr int n = fdem::kStepPhases + 1;
+    if (tt.procs == 0 || tt.steps == 0) return;
+    struct Stat {
+        double min, mean, max;
+    };
+    const auto stat = [&](int k) {
+        Stat st{tt.at(0, k), 0.0, tt.at(0, k)};
+        for (int r = 0; r < tt.procs; ++r) {
+            st.min = std::min(st.min, tt.at(r, k));
+            st.max = std::max(st.max, tt.at(r, k));
+            st.mean += tt.at(r, k);
+        }
+        st.mean /= tt.procs;
+        return st;
+    };
     const auto name = [](int k) {
         return k < fdem::kStepPhases ? fdem::kStepPhaseNames[k] : "other";
     };
-    const double scale = tt.wall_mean > 0 ? 100.0 / tt.wall_mean : 0.0;
+    const double wall = stat(TimingTable::kWall).mean;
+    const double scale = wall > 0 ? 100.0 / wall : 0.0;
     if (tt.procs == 1) {
         fmt::print(
             "timing     wall seconds of the {} steps by phase (% of {:.4g} s); other = output, "
             "checks, checkpoints\n",
-            tt.steps, tt.wall_mean);
-        for (int k = 0; k < n; ++k) {
-            if (k == static_cast<int>(fdem::StepPhase::Communication)) continue;
-            fmt::print("           {:<14} {:10.4g} s {:6.1f} %\n", name(k), tt.t[k][1],
-                       scale * tt.t[k][1]);
-        }
-        return;
+            tt.steps, wall);
+    } else {
+        fmt::print(
+            "timing     wall seconds of the {} steps by phase over {} processes: min / mean / "
+            "max (% of the mean {:.4g} s); communication includes the waits for the other "
+            "processes\n",
+            tt.steps, tt.procs, wall);
     }
-    fmt::print(
-        "timing     wall seconds of the {} steps by phase over {} processes: min / mean / "
-        "max (% of the mean {:.4g} s); communication includes the waits for the other "
-        "processes\n",
-        tt.steps, tt.procs, tt.wall_mean);
-    for (int k = 0; k < n; ++k) {
-        fmt::print("           {:<14} {:10.4g} {:10.4g} {:10.4g} s {:6.1f} %\n", name(k),
-                   tt.t[k][0], tt.t[k][1], tt.t[k][2], scale * tt.t[k][1]);
+    for (int k = 0; k <= TimingTable::kOther; ++k) {
+        const Stat st = stat(k);
+        if (tt.procs == 1) {
+            if (k == static_cast<int>(fdem::StepPhase::Communication)) continue;
+            fmt::print("           {:<14} {:10.4g} s {:6.1f} %\n", name(k), st.mean,
+                       scale * st.mean);
+        } else {
+            fmt::print("           {:<14} {:10.4g} {:10.4g} {:10.4g} s {:6.1f} %\n", name(k),
+                       st.min, st.mean, st.max, scale * st.mean);
+        }
     }
 }
 
+// text to path; false, with errno set, if it cannot be written
+bool write_text_file(const std::string& path, const std::string& text) {
+    std::FILE* fp = std::fopen(path.c_str(), "w");
+    if (fp == nullptr) return false;
+    const bool wrote = std::fputs(text.c_str(), fp) >= 0;
+    const int saved = errno;
+    const bool closed = std::fclose(fp) == 0;
+    if (!wrote) errno = saved;
+    return wrote && closed;
+}
+
+// Broken joints per mode, W_frac and the fracture-energy audit (docs/theory.md eq. 9.20):
+// Gamma = W_frac / broken length, and per mode the work of its broken joints over their length.
 void print_fracture_summary(const fdem::Model& m, const fdem::State& s) {
     const fdem::Joints& J = m.joints;
     const fdem::JointState& js = s.joints;
@@ -620,8 +628,7 @@ int run(const RunOptions& opt) {
         const std::string csv = sim.partition_csv();
         if (g_comm->rank() == 0) {
             const std::string path = (std::filesystem::path(out) / "partition.csv").string();
-            std::FILE* fp = std::fopen(path.c_str(), "w");
-            if (fp == nullptr || std::fputs(csv.c_str(), fp) < 0 || std::fclose(fp) != 0) {
+            if (!write_text_file(path, csv)) {
                 fmt::print(stderr, "warning: cannot write {}: {}\n", path, std::strerror(errno));
             } else if (!opt.quiet) {
                 fmt::print("processes  {} ({} partition); per process and step: {}\n",
@@ -643,13 +650,10 @@ int run(const RunOptions& opt) {
     const uint64_t hash = sim.state_hash();
     // (collective in a distributed run: every process takes part, process 0 prints)
     const TimingTable timing = opt.quiet ? TimingTable{} : timing_table(s.timing, wall, g_comm);
-    if (timing.valid && (g_comm == nullptr || g_comm->rank() == 0)) {
+    if (timing.procs > 0 && (g_comm == nullptr || g_comm->rank() == 0)) {
         const std::string path = (std::filesystem::path(out) / "timing.csv").string();
-        const std::string csv = timing_csv(timing);
-        std::FILE* fp = std::fopen(path.c_str(), "w");
-        if (fp == nullptr || std::fputs(csv.c_str(), fp) < 0 || std::fclose(fp) != 0) {
+        if (!write_text_file(path, timing_csv(timing)))
             fmt::print(stderr, "warning: cannot write {}: {}\n", path, std::strerror(errno));
-        }
     }
     if (!opt.quiet) {
         const double steps = static_cast<double>(s.step - start_step);
@@ -793,8 +797,7 @@ int decompose_command(const DecomposeOptions& opt, const fdem::Comm* rcb_comm) {
                 : fmt::format("; joints run {:.0f} mean / {:.0f} max", j_mean, j_max));
     }
     if (!opt.csv.empty()) {
-        std::FILE* fp = std::fopen(opt.csv.c_str(), "w");
-        if (fp == nullptr || std::fputs(csv.c_str(), fp) < 0 || std::fclose(fp) != 0) {
+        if (!write_text_file(opt.csv, csv)) {
             throw fdem::InputError({}, "--csv",
                                    fmt::format("--csv: cannot write \"{}\": {}; expected a "
                                                "writable file path",
