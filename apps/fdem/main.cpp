@@ -35,6 +35,7 @@
 #include <CLI/CLI.hpp>
 
 #include "contact/contact.hpp"
+#include "core/huge_pages.hpp"
 #include "detect/broad_phase.hpp"
 #include "element/cst.hpp"
 #include "fdem/fdem.hpp"
@@ -83,6 +84,7 @@ struct RunOptions {
     std::string partition = "rcb";  ///< distributed runs: rcb, ids or random node groups
     int rebalance_every = 10;       ///< distributed runs: broad-phase searches between checks
     double imbalance = 1.1;         ///< distributed runs: max / mean work that rebalances
+    bool no_huge_pages = false;     ///< leave the arrays on 4 KiB pages (core/huge_pages.hpp)
 };
 
 // Rough resident size of the model and state [bytes], for `fdem check`; with fracture the
@@ -474,8 +476,25 @@ const CLI::Validator kFinitePositive(
 // nullptr for a one-process run.
 const fdem::Comm* g_comm = nullptr;
 
+// The summary's "pages" line: how much of this process's memory transparent huge pages back
+// (core/huge_pages.hpp), or why none.
+void print_huge_pages(bool off) {
+    const size_t page = fdem::huge_page_size();
+    if (off) {
+        fmt::print("pages      4 KiB (--no-huge-pages)\n");
+    } else if (page == 0) {
+        fmt::print("pages      4 KiB (this kernel has no transparent huge pages)\n");
+    } else {
+        fmt::print("pages      {:.1f} MB of this process on {} transparent huge pages\n",
+                   static_cast<double>(fdem::huge_page_bytes_in_use()) / 1e6,
+                   page % (1 << 20) == 0 ? fmt::format("{} MiB", page >> 20)
+                                         : fmt::format("{} KiB", page >> 10));
+    }
+}
+
 int run(const RunOptions& opt) {
     using clock = std::chrono::steady_clock;
+    fdem::set_huge_pages(!opt.no_huge_pages);  // (before the model's arrays are built)
     // a distributed run: process 0 reads (meshes) each mesh file once and broadcasts it
     fdem::Scenario sc =
         fdem::load_scenario(opt.scenario, g_comm != nullptr ? fdem::broadcast_mesh_reader(*g_comm)
@@ -679,6 +698,7 @@ int run(const RunOptions& opt) {
                 c.candidates, c.triangle_couples ? "triangle couples" : "(node, body) pairs",
                 c.in_contact, c.broad_phase_runs);
         }
+        print_huge_pages(opt.no_huge_pages);
         print_timing(timing);  // (and timing.csv: one row per process)
         fmt::print("output     {} ({} frames; open series.pvd in ParaView)\n", out,
                    sim.frames_written());
@@ -844,6 +864,9 @@ int main(int argc, char** argv) {
     run_cmd->add_option("--threads", ro.threads, "OpenMP threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
     run_cmd->add_flag("--quiet", ro.quiet, "no summary and no progress line");
+    run_cmd->add_flag("--no-huge-pages", ro.no_huge_pages,
+                      "leave the model's and state's arrays on 4 KiB pages (default: the large "
+                      "ones on 2 MiB transparent huge pages where Linux allows; same results)");
     run_cmd
         ->add_option("--checkpoint-every", ro.checkpoint_every,
                      "write OUT/checkpoint.fdck every T simulated seconds and at the end")

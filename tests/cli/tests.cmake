@@ -150,6 +150,18 @@ add_test(NAME cli.run_prints_timing
                  ${cli_out}/timing 0.025)
 set_tests_properties(cli.run_prints_timing PROPERTIES LABELS input
                      PASS_REGULAR_EXPRESSION "OK: timing table")
+# the summary says which pages hold the arrays (core/huge_pages.hpp); --no-huge-pages leaves
+# them on 4 KiB pages (the same bits: HugePages.SameStepBitsOnEitherPageSize)
+add_test(NAME cli.run_prints_pages
+         COMMAND $<TARGET_FILE:fdem_cli> run ${cli_dir}/restart.toml --out ${cli_out}/pages
+                 --end-time 0.005)
+set_tests_properties(cli.run_prints_pages PROPERTIES LABELS input PASS_REGULAR_EXPRESSION
+    "\npages      ([0-9.]+ MB of this process on [0-9]+ [KM]iB transparent huge pages|4 KiB \\(this kernel has no transparent huge pages\\))\n")
+add_test(NAME cli.run_no_huge_pages
+         COMMAND $<TARGET_FILE:fdem_cli> run ${cli_dir}/restart.toml --out ${cli_out}/pages_off
+                 --end-time 0.005 --no-huge-pages)
+set_tests_properties(cli.run_no_huge_pages PROPERTIES LABELS input PASS_REGULAR_EXPRESSION
+    "\npages      4 KiB \\(--no-huge-pages\\)\n")
 # fdem decompose (issue #15, docs/parallel.md): bad arguments exit 2 naming the option and the
 # value; a run prints one summary line per part count and writes the CSV
 add_test(NAME cli.decompose_zero_parts_exits_2

@@ -28,6 +28,7 @@
 #include <fmt/format.h>
 
 #include "contact/contact.hpp"
+#include "core/huge_pages.hpp"
 #include "element/cst.hpp"
 #include "fdem/error.hpp"
 #include "fdem/simulate.hpp"
@@ -77,6 +78,28 @@ void apply_initial_supports(const Model& m, State& s) {
     }
 }
 
+// the per-node arrays of the state, the topology's and the joints' on huge pages
+// (core/huge_pages.hpp: advice, no result changes; arrays under 1 MiB are left alone)
+void state_on_huge_pages(const State& s) {
+    for (const auto* a : {&s.x, &s.v, &s.f, &s.f_contact})
+        prefer_huge_pages(*a);
+    prefer_huge_pages(s.scratch_sums);
+    const ContactTopology& t = s.topology;
+    for (const auto* a : {&t.node_scale, &t.node_dist})
+        prefer_huge_pages(*a);
+    prefer_huge_pages(t.node_dist_edge);
+    prefer_huge_pages(t.sub_tri);
+    prefer_huge_pages(t.sub_parent);
+    prefer_huge_pages(t.body_cnode);
+    const JointState& j = s.joints;
+    for (const auto* a : {&j.d_max, &j.z_max})
+        prefer_huge_pages(*a);
+    for (const auto* a : {&j.f_prev, &j.d_prev})
+        prefer_huge_pages(*a);
+    prefer_huge_pages(j.status);
+    prefer_huge_pages(j.work);
+}
+
 }  // namespace
 
 State make_state(const Model& m, Real dt) {
@@ -113,6 +136,7 @@ State make_state(const Model& m, Real dt) {
     init_fracture_state(m, s);  // joint history, pre-broken joints, sectors, fragments
     init_contact_state(m, s);
     if (!m.prebroken_joints.empty()) rebuild_fracture_views(m, s);  // topology with the cracks
+    state_on_huge_pages(s);
     return s;
 }
 

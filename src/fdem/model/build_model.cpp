@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "contact/contact.hpp"
+#include "core/huge_pages.hpp"
 #include "element/cst.hpp"
 #include "fdem/build.hpp"
 #include "fdem/error.hpp"
@@ -620,6 +621,23 @@ void finalize_model(Model& m, std::vector<int32_t>& node_new) {
     finalize_fracture(m);
     resolve_contact_params(m);
     m.element_schedule = build_element_schedule(m);
+    // the per-node, per-triangle and per-joint arrays the step streams, on huge pages where the
+    // kernel allows (no result changes: docs/performance.md "Huge pages")
+    for (const auto* a : {&m.node_x0, &m.node_v0})
+        prefer_huge_pages(*a);
+    for (const auto* a : {&m.node_mass, &m.node_inv_mass, &m.tri_area0, &m.tri_eta})
+        prefer_huge_pages(*a);
+    prefer_huge_pages(m.tri_nodes);
+    prefer_huge_pages(m.tri_dm_inv);
+    prefer_huge_pages(m.tri_material);
+    prefer_huge_pages(m.node_body);
+    prefer_huge_pages(m.tri_body);
+    prefer_huge_pages(m.joints.nodes);
+    prefer_huge_pages(m.joints.length0);
+    prefer_huge_pages(m.joints.law);
+    prefer_huge_pages(m.joints.gather_node);
+    prefer_huge_pages(m.joints.gather_begin);
+    prefer_huge_pages(m.joints.gather_entry);
 }
 
 Real element_stable_time_step(const Model& m, TriId* limiting_tri) {
