@@ -430,7 +430,9 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         // the smallest det F over the processes, ties to the smallest chunk: the serial one;
         // with the skin trigger's max |v|^2 of contact (v is final for this step's contact
         // after the kicks) in one reduction (spec D8.3)
-        double mins[2] = {sp.min_jacobian, -max_speed2(v, plan->own_runs)};
+        // (without contact no skin: no pass over v)
+        const bool skin = m.contact.algorithm != ContactAlgorithm::None;
+        double mins[2] = {sp.min_jacobian, skin ? -max_speed2(v, plan->own_runs) : 0.0};
         comm->min(mins, 2);
         timing.mark(StepPhase::Communication);
         pass.min_jacobian = mins[0];
