@@ -4,7 +4,8 @@
 # (x, v, energies), history.csv, bodies.csv and (with joints) cracks.csv and fragments.csv are
 # byte-identical to the one-process run's and its last frame is bitwise the serial one (issue
 # #15, spec parallel-and-python.md T1, T6).
-# OMP_NUM_THREADS is the caller's.
+# OMP_NUM_THREADS is the caller's. FDEM_TEST_GROUPS (optional): the model's node groups, when
+# fewer than the processes (then only that many processes hold cells of the frames).
 set -euo pipefail
 fdem=$1 mpiexec=$2 scenario=$3 out=$4 nps=$5
 shift 5
@@ -42,7 +43,8 @@ for np in $nps; do
     last=$(cd "$out/serial" && ls frame_*.vtu | tail -1)
     if [ -f "$out/np$np/${last%.vtu}.pvtu" ]; then
         if ! /usr/bin/python3 "$(dirname "$0")/check_pvtu.py" "$out/serial/$last" \
-            "$out/np$np/${last%.vtu}.pvtu" "$np"; then
+            "$out/np$np/${last%.vtu}.pvtu" "$np" \
+            "$(( ${FDEM_TEST_GROUPS:-$np} < np ? ${FDEM_TEST_GROUPS:-$np} : np ))"; then
             echo "FAIL: ${last%.vtu}.pvtu of -np $np differs from the serial $last"
             fail=1
         fi

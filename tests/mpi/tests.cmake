@@ -162,6 +162,23 @@ add_test(NAME mpi.same_as_serial.saturated_pack_threads
                  ${mpi_out}/saturated_pack "2 3")
 set_tests_properties(mpi.same_as_serial.saturated_pack_threads PROPERTIES LABELS mpi TIMEOUT 300
                      PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: bitwise the serial run")
+# fewer node groups than processes (Zoltan RCB refuses a process without points): no hang, the
+# serial bits (few_groups.sh)
+add_test(NAME mpi.same_as_serial.few_node_groups
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/few_groups.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${mpi_out}/few_groups)
+set_tests_properties(mpi.same_as_serial.few_node_groups PROPERTIES LABELS mpi TIMEOUT 120
+                     PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: fewer node groups")
+# scripts/scaling (docs/parallel.md "Measuring scaling"): the two scenes at toy sizes, one round;
+# the summary lines and scaling.csv's rows (3 runs per scene and round)
+add_test(NAME mpi.scaling_script
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${PROJECT_SOURCE_DIR}/scripts/scaling --block-mesh 0.05 --pack-blocks 16
+                 --rounds 1 --steps 20 --out ${mpi_out}/scaling --fdem $<TARGET_FILE:fdem_cli>
+                 --mpiexec ${MPIEXEC_EXECUTABLE})
+set_tests_properties(mpi.scaling_script PROPERTIES LABELS mpi TIMEOUT 120 PROCESSORS 2
+    PASS_REGULAR_EXPRESSION "block: 242 / 484 triangles, 20 steps at dt [^:]+: strong speed-up median [0-9.]+x \\([0-9.-]+\\), weak efficiency median [0-9.]+ \\([0-9.-]+\\) over 1 round\\(s\\)\npack: 32 / 64 triangles, 20 steps")
 # D13: [output] merge = true: process 0 writes the serial .vtu frames instead of .pvtu pieces
 mpi_same_as_serial(merged_frames ${mpi_dir}/merged.toml merged "3")
 # Example 12 (issue #15 "Done when"): the example's own run script (make_raster.py, the generated

@@ -4,6 +4,7 @@
 #include <zoltan.h>
 
 #include <cstring>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -104,7 +105,10 @@ std::vector<int> rcb_parts(const MpiComm& comm, std::span<const Vec2> x,
     Zoltan_LB_Free_Part(&imp_g, &imp_l, &imp_p, &imp_part);
     Zoltan_LB_Free_Part(&exp_g, &exp_l, &exp_p, &exp_part);
     Zoltan_Destroy(&zz);
-    check(rc, "Zoltan_LB_Partition");
+    // every process the same outcome: a process whose Zoltan failed must not leave the others
+    // waiting in the next collective (spec D9), so the smallest code (errors are negative) is
+    // every process's
+    check(static_cast<int>(comm.min(static_cast<double>(rc))), "Zoltan_LB_Partition");
     for (int p : part) {
         if (p < 0) throw std::runtime_error("Zoltan: a point was given no part");
     }
@@ -125,6 +129,15 @@ std::vector<int32_t> rcb_group_owners(const MpiComm& comm, std::span<const Vec2>
     }
     const size_t groups = centre.size();
     const int P = comm.size(), r = comm.rank();
+    const size_t nparts = static_cast<size_t>(parts > 0 ? parts : P);
+    if (groups < nparts) {
+        // fewer node groups than parts (a model of < 64 P nodes): some process would hand
+        // Zoltan no point, which its RCB refuses (ZOLTAN_FATAL); group g goes to part g, the
+        // other parts own nothing (the same on every process count asked for these parts)
+        std::vector<int32_t> owner(groups);
+        std::iota(owner.begin(), owner.end(), 0);
+        return owner;
+    }
     const size_t b = groups * static_cast<size_t>(r) / static_cast<size_t>(P);
     const size_t e = groups * static_cast<size_t>(r + 1) / static_cast<size_t>(P);
     std::vector<uint64_t> gid(e - b);

@@ -15,7 +15,7 @@ namespace fdem {
 /// The part (0 .. parts - 1) of each of this process's points (x, weight, a global id unique
 /// over all processes), from Zoltan's RCB over the points of every process (LB_METHOD = RCB,
 /// DETERMINISTIC = 1: the same input on the same process count gives the same parts). Collective.
-/// Throws std::runtime_error if Zoltan reports an error.
+/// Throws std::runtime_error on every process if Zoltan reports an error on any.
 std::vector<int> rcb_parts(const MpiComm& comm, std::span<const Vec2> x,
                            std::span<const double> weight, std::span<const uint64_t> gid,
                            int parts);
@@ -25,7 +25,8 @@ std::vector<int> rcb_parts(const MpiComm& comm, std::span<const Vec2> x,
 /// Zoltan a contiguous share of the groups, and the parts are all-gathered, so every process
 /// returns the same vector. The parts are numbered in the order of their first group (Zoltan's
 /// numbering of the same cuts differs with the process count), so one process asked for P
-/// parts (`fdem decompose`) gives the owners of P processes. Collective.
+/// parts (`fdem decompose`) gives the owners of P processes. With fewer groups than parts,
+/// Zoltan is not called: group g goes to part g (the other parts own nothing). Collective.
 std::vector<int32_t> rcb_group_owners(const MpiComm& comm, const Model& m, int parts = 0);
 
 /// The same from given centres and weights of the node groups (the same on every process), e.g.
