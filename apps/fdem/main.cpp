@@ -231,11 +231,8 @@ TimingTable timing_table(const fdem::StepTiming& st, double wall, const fdem::Co
 // timing.csv: one row per process (rank, steps, the seconds of each phase, other, wall)
 std::string timing_csv(const TimingTable& tt) {
     std::string csv = "rank,steps";
-    for (int k = 0; k < fdem::kStepPhases; ++k) {
-        std::string name = fdem::kStepPhaseNames[k];
-        std::replace(name.begin(), name.end(), ' ', '_');
-        csv += "," + name;
-    }
+    for (int k = 0; k < fdem::kStepPhases; ++k)
+        csv += std::string(",") + fdem::kStepPhaseKeys[k];
     csv += ",other,wall\n";
     for (int r = 0; r < tt.procs; ++r) {
         csv += fmt::format("{},{}", r, tt.steps);

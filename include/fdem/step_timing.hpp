@@ -26,6 +26,10 @@ inline constexpr int kStepPhases = 7;
 inline constexpr const char* kStepPhaseNames[kStepPhases] = {
     "elements",      "joints",      "broad phase",  "narrow phase",
     "contact apply", "node update", "communication"};
+/// The same as identifiers (timing.csv columns, the keys of Python's sim.timing).
+inline constexpr const char* kStepPhaseKeys[kStepPhases] = {
+    "elements",      "joints",      "broad_phase",  "narrow_phase",
+    "contact_apply", "node_update", "communication"};
 
 struct StepTiming {
     using Clock = std::chrono::steady_clock;

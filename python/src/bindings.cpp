@@ -16,7 +16,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -810,11 +809,8 @@ PYBIND11_MODULE(_fdem, mod) {
                 const fdem::StepTiming& t = s.sim.state().timing;
                 py::dict d;
                 d["steps"] = t.steps;
-                for (int k = 0; k < fdem::kStepPhases; ++k) {
-                    std::string key = fdem::kStepPhaseNames[k];
-                    std::replace(key.begin(), key.end(), ' ', '_');
-                    d[py::str(key)] = t.seconds[k];
-                }
+                for (int k = 0; k < fdem::kStepPhases; ++k)
+                    d[fdem::kStepPhaseKeys[k]] = t.seconds[k];
                 return d;
             },
             "wall seconds per phase of the steps timed since timing_on was set or "
