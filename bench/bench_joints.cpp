@@ -9,6 +9,7 @@
 #include "bench_common.hpp"
 #include "fdem/mesh.hpp"
 #include "fracture/joint_mesh.hpp"
+#include "fracture/joints.hpp"
 
 namespace fdem {
 namespace {
@@ -78,6 +79,27 @@ void sizes(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_Joints)->Apply(sizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_JointsNoEnergy)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+
+// The same kernel on each vector path this CPU runs (arg 2: 0 portable, 1 AVX2, 2 AVX-512), one
+// thread: which path Auto should pick on this CPU (e.g. AVX-512 executed at half width on Zen 4).
+void BM_JointsNoEnergyPath(benchmark::State& st) {
+    using detail::JointPath;
+    const int which = static_cast<int>(st.range(2));
+    if ((which == 1 && !detail::joint_avx2_supported()) ||
+        (which == 2 && !detail::joint_avx512_supported())) {
+        st.SkipWithError("this CPU or build has no such path");
+        return;
+    }
+    detail::set_joint_path(which == 0   ? JointPath::Portable
+                           : which == 1 ? JointPath::Avx2
+                                        : JointPath::Avx512);
+    joints(st, false);
+    st.SetLabel(detail::joint_path_name());
+    detail::set_joint_path(JointPath::Auto);
+}
+BENCHMARK(BM_JointsNoEnergyPath)
+    ->ArgsProduct({{1 << 14, 1 << 20}, {1}, {0, 1, 2}})
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace fdem

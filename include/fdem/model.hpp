@@ -130,6 +130,13 @@ struct ElementSchedule {
     std::vector<std::array<TriId, 2>> chunk_tris;  ///< [begin, end) per chunk, sorted by color
     std::vector<BodyId> chunk_body;                ///< (first) body of each chunk
     std::vector<int32_t> color_begin;  ///< chunks of color c: [color_begin[c], color_begin[c+1])
+    /// per chunk: 1 when it is of CST triangles whose every node belongs to that one triangle (a
+    /// jointed body: fracture splits every vertex), so the serial step's element pass is the
+    /// first writer of those nodes' forces and stores them (first_internal_forces())
+    std::vector<uint8_t> chunk_first;
+    /// the node ranges [first, end) whose force the serial step zeros before the element pass:
+    /// every node but those of the chunk_first chunks (all nodes as one run when there is none)
+    std::vector<std::array<NodeId, 2>> clear_runs;
     int32_t num_chunks() const { return static_cast<int32_t>(chunk_tris.size()); }
 };
 

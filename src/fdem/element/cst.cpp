@@ -46,7 +46,9 @@ CstKernel g_kernel = CstKernel::Auto;
 // Triangles [begin, end) of one body with Lame constants (lambda, mu). kViscous: some triangle
 // of the range has eta > 0 (theory eq. 2.4); otherwise the viscous code is compiled out.
 // kEnergy: sum the strain energy (one std::log per triangle); the forces do not depend on it.
-template <bool kViscous, bool kEnergy>
+// kFirst: the range is a chunk_first chunk: its nodes' forces are stored (add_triangle_forces),
+// an inverted triangle's as zeros (what the clear would have left).
+template <bool kViscous, bool kEnergy, bool kFirst = false>
 void element_range(const Model& m, const Vec2* __restrict x, const Vec2* __restrict v,
                    Vec2* __restrict f, TriId begin, TriId end, Real lambda, Real mu,
                    ElementPass& out) {
@@ -70,7 +72,10 @@ void element_range(const Model& m, const Vec2* __restrict x, const Vec2* __restr
             min_j = J;
             min_t = t;
         }
-        if (!(J > 0)) continue;  // inverted: reported by the caller, no force from a log of < 0
+        if (!(J > 0)) {  // inverted: reported by the caller, no force from a log of < 0
+            if constexpr (kFirst) f[a] = f[b] = f[c] = Vec2{0, 0};
+            continue;
+        }
 
         // elastic Cauchy stress and strain energy (theory eqs. 2.1, 2.2)
         Mat2 sigma = cauchy_stress(lambda, mu, F);
@@ -86,7 +91,7 @@ void element_range(const Model& m, const Vec2* __restrict x, const Vec2* __restr
         }
 
         // nodal forces f_i = 1/2 sigma n_i (theory eq. 3.3)
-        add_triangle_forces(f, a, b, c, xa, xb, xc, sigma);
+        add_triangle_forces<kFirst>(f, a, b, c, xa, xb, xc, sigma);
     }
     out.strain_energy += energy;
     out.viscous_power += power;
@@ -101,7 +106,8 @@ void element_range(const Model& m, const Vec2* __restrict x, const Vec2* __restr
 // order: smallest J and the scatter of the forces. Every value is the same expression as in
 // element_range (same helpers, same order of operations, -ffp-contract=off), so the forces are
 // bitwise those of the scalar loop; an inverted triangle (J <= 0) computes throw-away values in
-// (2) and is skipped in (3) exactly as there.
+// (2) and is skipped in (3) exactly as there. kFirst: as element_range.
+template <bool kFirst = false>
 void elastic_range(const Model& m, const Vec2* __restrict x, Vec2* __restrict f, TriId begin,
                    TriId end, Real lambda, Real mu, ElementPass& out) {
     constexpr int kBlock = 64;
@@ -150,11 +156,20 @@ void elastic_range(const Model& m, const Vec2* __restrict x, Vec2* __restrict f,
                 min_j = J;
                 min_t = t;
             }
-            if (!(J > 0)) continue;  // inverted: reported by the caller, no force
             const auto& q = tri[t];
-            f[q[0]] += Vec2{fax[i], fay[i]};
-            f[q[1]] += Vec2{fbx[i], fby[i]};
-            f[q[2]] += Vec2{fcx[i], fcy[i]};
+            if (!(J > 0)) {  // inverted: reported by the caller, no force
+                if constexpr (kFirst) f[q[0]] = f[q[1]] = f[q[2]] = Vec2{0, 0};
+                continue;
+            }
+            if constexpr (kFirst) {  // 0 + f_i: the bits of a cleared f plus f_i
+                f[q[0]] = Vec2{0, 0} + Vec2{fax[i], fay[i]};
+                f[q[1]] = Vec2{0, 0} + Vec2{fbx[i], fby[i]};
+                f[q[2]] = Vec2{0, 0} + Vec2{fcx[i], fcy[i]};
+            } else {
+                f[q[0]] += Vec2{fax[i], fay[i]};
+                f[q[1]] += Vec2{fbx[i], fby[i]};
+                f[q[2]] += Vec2{fcx[i], fcy[i]};
+            }
         }
     }
     out.min_jacobian = min_j;
@@ -168,9 +183,26 @@ bool use_avx2() {
            (g_kernel == CstKernel::Avx2 && cst_avx2_available());
 }
 
-// Dispatch a range of triangles of one material on whether any of them is viscous.
+// The portable loops for a range (kFirst: of a chunk_first chunk).
+template <bool kFirst>
+void portable_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
+                    const Material& mt, bool viscous, bool with_energy, ElementPass& out) {
+    if (viscous && with_energy) {
+        element_range<true, true, kFirst>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
+    } else if (viscous) {
+        element_range<true, false, kFirst>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
+    } else if (with_energy) {
+        // the blocked kernel measured no faster here: the std::log and the energy sum dominate
+        element_range<false, true, kFirst>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
+    } else {
+        elastic_range<kFirst>(m, x, f, begin, end, mt.lambda, mt.mu, out);
+    }
+}
+
+// Dispatch a range of triangles of one material on whether any of them is viscous. first: the
+// range is a chunk_first chunk (its nodes' forces are stored, not added; CST only).
 void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
-                    bool with_energy, ElementPass& out) {
+                    bool with_energy, ElementPass& out, bool first = false) {
     // composite bodies: selective-integration kernel (theory §3.5); chunks never mix kinds
     if (m.bodies[m.tri_body[begin]].element == ElementKind::Composite6) {
         add_composite_forces(m, x, v, f, begin, end, with_energy, out);
@@ -184,19 +216,15 @@ void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId
         // 8 triangles per instruction, bitwise the same forces, energy and viscous power
         // (element/cst_simd.cpp)
         detail::cst_range_avx512(m, x, v, f, begin, end, mt.lambda, mt.mu, viscous, with_energy,
-                                 out);
+                                 out, first);
     } else if (use_avx2()) {
         // the same with AVX2, 4 triangles per instruction (element/cst_simd.cpp)
-        detail::cst_range_avx2(m, x, v, f, begin, end, mt.lambda, mt.mu, viscous, with_energy, out);
-    } else if (viscous && with_energy) {
-        element_range<true, true>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
-    } else if (viscous) {
-        element_range<true, false>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
-    } else if (with_energy) {
-        // the blocked kernel measured no faster here: the std::log and the energy sum dominate
-        element_range<false, true>(m, x, v, f, begin, end, mt.lambda, mt.mu, out);
+        detail::cst_range_avx2(m, x, v, f, begin, end, mt.lambda, mt.mu, viscous, with_energy, out,
+                               first);
+    } else if (first) {
+        portable_range<true>(m, x, v, f, begin, end, mt, viscous, with_energy, out);
     } else {
-        elastic_range(m, x, f, begin, end, mt.lambda, mt.mu, out);
+        portable_range<false>(m, x, v, f, begin, end, mt, viscous, with_energy, out);
     }
 }
 
@@ -270,14 +298,18 @@ ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Ve
     return out;
 }
 
-ElementPass add_internal_forces(const Model& m, State& s) {
+namespace {
+
+// add_internal_forces(m, s) (first: first_internal_forces(m, s))
+ElementPass schedule_pass(const Model& m, State& s, bool first) {
     const ElementSchedule& sc = m.element_schedule;
     const int32_t nc = sc.num_chunks();
     const int32_t ncolors = static_cast<int32_t>(sc.color_begin.size()) - 1;
     const Real* part = run_chunks(
         s, sc.color_begin.data(), ncolors, nc,
         [&](int32_t k, const Vec2* x, const Vec2* v, Vec2* f, bool with_energy, ElementPass& p) {
-            material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy, p);
+            material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy, p,
+                           first && sc.chunk_first[static_cast<size_t>(k)] != 0);
         });
 
     // the chunk partials combined exactly (theory §4.4): the same sums whatever the thread count
@@ -296,6 +328,16 @@ ElementPass add_internal_forces(const Model& m, State& s) {
     out.strain_energy = strain.value();
     out.viscous_power = viscous.value();
     return out;
+}
+
+}  // namespace
+
+ElementPass add_internal_forces(const Model& m, State& s) {
+    return schedule_pass(m, s, false);
+}
+
+ElementPass first_internal_forces(const Model& m, State& s) {
+    return schedule_pass(m, s, true);
 }
 
 ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_owner, int32_t rank) {
@@ -467,6 +509,41 @@ ElementSchedule build_element_schedule(const Model& m) {
         const int32_t slot = next[static_cast<size_t>(color[k])]++;
         sc.chunk_tris[static_cast<size_t>(slot)] = chunks[k];
         sc.chunk_body[static_cast<size_t>(slot)] = chunk_body[k];
+    }
+
+    // first writers (first_internal_forces): chunks of CST triangles each of whose nodes is used
+    // by that triangle alone (over every triangle of the model, fixed bodies' included); the
+    // serial step clears every other node
+    std::vector<uint8_t> uses(static_cast<size_t>(m.num_nodes()), 0);
+    for (const auto& q : m.tri_nodes) {
+        for (NodeId n : q)
+            uses[static_cast<size_t>(n)] = static_cast<uint8_t>(std::min(2, uses[n] + 1));
+    }
+    std::vector<uint8_t> written(static_cast<size_t>(m.num_nodes()), 0);
+    sc.chunk_first.assign(n_chunks, 0);
+    for (size_t k = 0; k < n_chunks; ++k) {
+        const auto [b, e] = sc.chunk_tris[k];
+        if (m.bodies[m.tri_body[b]].element != ElementKind::Cst) continue;
+        bool own = true;
+        for (TriId t = b; t < e && own; ++t) {
+            for (NodeId n : m.tri_nodes[t])
+                own = own && m.bodies[m.tri_body[t]].element == ElementKind::Cst &&
+                      uses[static_cast<size_t>(n)] == 1;
+        }
+        if (!own) continue;
+        sc.chunk_first[k] = 1;
+        for (TriId t = b; t < e; ++t) {
+            for (NodeId n : m.tri_nodes[t])
+                written[static_cast<size_t>(n)] = 1;
+        }
+    }
+    for (NodeId n = 0; n < m.num_nodes(); ++n) {
+        if (written[static_cast<size_t>(n)]) continue;
+        if (!sc.clear_runs.empty() && sc.clear_runs.back()[1] == n) {
+            ++sc.clear_runs.back()[1];
+        } else {
+            sc.clear_runs.push_back({n, n + 1});
+        }
     }
     return sc;
 }

@@ -34,6 +34,13 @@ ElementPass add_internal_forces(const Model& m, const Vec2* x, const Vec2* v, Ve
 /// (otherwise 0); the forces are bitwise the same either way.
 ElementPass add_internal_forces(const Model& m, State& s);
 
+/// The element pass of the serial step: add_internal_forces(m, s), except that the chunks of
+/// ElementSchedule::chunk_first store the forces of their nodes (0 + f_i, the bits of a cleared f
+/// plus f_i) instead of adding them, so s.f need not be cleared there first: the caller zeros
+/// only ElementSchedule::clear_runs (docs/performance.md "Stop 49"). Same forces, energies and
+/// smallest det F as clearing every node and calling add_internal_forces(m, s).
+ElementPass first_internal_forces(const Model& m, State& s);
+
 /// A subset of the element schedule for one process of a distributed run (issue #15, spec
 /// parallel-and-python.md D7.1 "owner computes"): every chunk that holds a triangle of a node the
 /// process owns, in schedule order (so color by color), and which of them the process counts in
@@ -116,14 +123,23 @@ inline Mat2 rate_of_deformation(const Vec2* v, NodeId a, NodeId b, NodeId c, con
 
 /// Nodal forces f_i += 1/2 sigma n_i of triangle (a, b, c) at current positions (xa, xb, xc),
 /// n_i the outward normal of the edge opposite node i scaled by its length (theory eq. 3.3).
+/// kFirst: the triangle's nodes are its own (ElementSchedule::chunk_first), so their forces are
+/// stored as 0 + f_i, the bits of a cleared f plus f_i, without reading f.
+template <bool kFirst = false>
 inline void add_triangle_forces(Vec2* __restrict f, NodeId a, NodeId b, NodeId c, Vec2 xa, Vec2 xb,
                                 Vec2 xc, const Mat2& sigma) {
     const Vec2 na = {xc.y - xb.y, xb.x - xc.x};
     const Vec2 nb = {xa.y - xc.y, xc.x - xa.x};
     const Vec2 nc = {xb.y - xa.y, xa.x - xb.x};
-    f[a] += 0.5 * (sigma * na);
-    f[b] += 0.5 * (sigma * nb);
-    f[c] += 0.5 * (sigma * nc);
+    if constexpr (kFirst) {
+        f[a] = Vec2{0, 0} + 0.5 * (sigma * na);
+        f[b] = Vec2{0, 0} + 0.5 * (sigma * nb);
+        f[c] = Vec2{0, 0} + 0.5 * (sigma * nc);
+    } else {
+        f[a] += 0.5 * (sigma * na);
+        f[b] += 0.5 * (sigma * nb);
+        f[c] += 0.5 * (sigma * nc);
+    }
 }
 
 /// Critical time step of one triangle: smallest altitude / P-wave speed (theory eq. 5.3).

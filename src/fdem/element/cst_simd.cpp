@@ -67,18 +67,22 @@ struct ViscousIn {
 // The scalar parts of a range, shared by the AVX-512 and AVX2 kernels (baseline SSE2 code without
 // a target attribute, so it inlines into either).
 
-// f[node] += (v[0], v[1])
+// f[node] += (v[0], v[1]); kFirst (a chunk_first chunk: the node is this triangle's alone):
+// f[node] = 0 + (v[0], v[1]), the bits of a cleared f plus v, without reading f
+template <bool kFirst>
 inline void add_force(double* fd, int32_t node, const double* v) {
     double* p = fd + 2 * static_cast<ptrdiff_t>(node);
-    _mm_storeu_pd(p, _mm_add_pd(_mm_loadu_pd(p), _mm_load_pd(v)));
+    const __m128d base = kFirst ? _mm_setzero_pd() : _mm_loadu_pd(p);
+    _mm_storeu_pd(p, _mm_add_pd(base, _mm_load_pd(v)));
 }
 
 // the forces of lane i of a group (corner k at fo[16 k + 2 i]) added to its three nodes
+template <bool kFirst>
 [[gnu::always_inline]] inline void add_lane_forces(double* fd, const int32_t* q, const double* fo,
                                                    int i) {
-    add_force(fd, q[3 * i], fo + 2 * i);
-    add_force(fd, q[3 * i + 1], fo + 16 + 2 * i);
-    add_force(fd, q[3 * i + 2], fo + 32 + 2 * i);
+    add_force<kFirst>(fd, q[3 * i], fo + 2 * i);
+    add_force<kFirst>(fd, q[3 * i + 1], fo + 16 + 2 * i);
+    add_force<kFirst>(fd, q[3 * i + 2], fo + 32 + 2 * i);
 }
 
 // Last group of a range (n < kLanes triangles from t0): the missing lanes repeat its last triangle
@@ -105,12 +109,12 @@ template <bool kViscous>
 
 // A whole group without an inverted triangle (its smallest J already taken): the forces in
 // triangle order and (kViscous) the viscous power of the lanes with eta > 0, as the portable sum.
-template <bool kViscous>
+template <bool kViscous, bool kFirst>
 [[gnu::always_inline]] inline void commit_group(double* fd, const int32_t* q, const double* fo,
                                                 const Real* eta, TriId t0, const double* pw,
                                                 Real& power) {
     for (int i = 0; i < kLanes; ++i)
-        add_lane_forces(fd, q, fo, i);
+        add_lane_forces<kFirst>(fd, q, fo, i);
     if constexpr (kViscous) {
         for (int i = 0; i < kLanes; ++i) {
             if (eta[t0 + i] > 0) power += pw[i];
@@ -119,8 +123,9 @@ template <bool kViscous>
 }
 
 // Lanes [0, n) of a group, as the portable kernel, triangle by triangle: the smallest J (jg) with
-// a strict <, no force from an inverted triangle (reported by the caller), the viscous power.
-template <bool kViscous>
+// a strict <, no force from an inverted triangle (reported by the caller; kFirst: zeros stored at
+// its nodes, what the clear would have left), the viscous power.
+template <bool kViscous, bool kFirst>
 [[gnu::always_inline]] inline void commit_checked(int n, double* fd, const int32_t* q,
                                                   const double* fo, const double* jg,
                                                   const Real* eta, TriId t0, const double* pw,
@@ -131,11 +136,17 @@ template <bool kViscous>
             min_j = Ji;
             min_t = t0 + i;
         }
-        if (!(Ji > 0)) continue;
+        if (!(Ji > 0)) {
+            if constexpr (kFirst) {
+                for (int k = 0; k < 3; ++k)
+                    _mm_storeu_pd(fd + 2 * static_cast<ptrdiff_t>(q[3 * i + k]), _mm_setzero_pd());
+            }
+            continue;
+        }
         if constexpr (kViscous) {
             if (eta[t0 + i] > 0) power += pw[i];
         }
-        add_lane_forces(fd, q, fo, i);
+        add_lane_forces<kFirst>(fd, q, fo, i);
     }
 }
 
@@ -273,7 +284,7 @@ FDEM_AVX512 inline __m512d group(const double* xd, const int32_t* q, const doubl
     return J;
 }
 
-template <bool kEnergy, bool kViscous>
+template <bool kEnergy, bool kViscous, bool kFirst>
 FDEM_AVX512 void range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin,
                        TriId end, Real lambda, Real mu, ElementPass& out) {
     const auto* tn = reinterpret_cast<const int32_t*>(m.tri_nodes.data());
@@ -329,10 +340,10 @@ FDEM_AVX512 void range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, Tr
                     min_j = gmin;
                     min_t = t0 + std::countr_zero(static_cast<unsigned>(at));
                 }
-                commit_group<kViscous>(fd, q, fo, eta, t0, pw, power);
+                commit_group<kViscous, kFirst>(fd, q, fo, eta, t0, pw, power);
                 continue;
             }
-            commit_checked<kViscous>(n, fd, q, fo, jg, eta, t0, pw, power, min_j, min_t);
+            commit_checked<kViscous, kFirst>(n, fd, q, fo, jg, eta, t0, pw, power, min_j, min_t);
         }
         if constexpr (kEnergy) {
             const int nb = static_cast<int>(b1 - b0);
@@ -543,7 +554,7 @@ FDEM_AVX2 inline V8 group_avx2(const double* xd, const int32_t* q, const double*
 }
 
 // range() with group_avx2: the same blocks, scatter, smallest-J rule and energy sums
-template <bool kEnergy, bool kViscous>
+template <bool kEnergy, bool kViscous, bool kFirst>
 FDEM_AVX2 void range_avx2(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin,
                           TriId end, Real lambda, Real mu, ElementPass& out) {
     const auto* tn = reinterpret_cast<const int32_t*>(m.tri_nodes.data());
@@ -592,10 +603,10 @@ FDEM_AVX2 void range_avx2(const Model& m, const Vec2* x, const Vec2* v, Vec2* f,
                     min_j = gmin;
                     min_t = t0 + first;
                 }
-                commit_group<kViscous>(fd, q, fo, eta, t0, pw, power);
+                commit_group<kViscous, kFirst>(fd, q, fo, eta, t0, pw, power);
                 continue;
             }
-            commit_checked<kViscous>(n, fd, q, fo, jg, eta, t0, pw, power, min_j, min_t);
+            commit_checked<kViscous, kFirst>(n, fd, q, fo, jg, eta, t0, pw, power, min_j, min_t);
         }
         if constexpr (kEnergy) {
             // A0 W, W = (mu/2)(tr C - 2 - 2 ln J) + (lambda/4)(J^2 - 1 - 2 ln J) (theory eq. 2.1):
@@ -623,32 +634,43 @@ FDEM_AVX2 void range_avx2(const Model& m, const Vec2* x, const Vec2* v, Vec2* f,
     out.min_jacobian_tri = min_t;
 }
 
-}  // namespace
-
-void cst_range_avx512(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
-                      Real lambda, Real mu, bool viscous, bool with_energy, ElementPass& out) {
-    if (viscous && with_energy) {
-        range<true, true>(m, x, v, f, begin, end, lambda, mu, out);
-    } else if (viscous) {
-        range<false, true>(m, x, v, f, begin, end, lambda, mu, out);
-    } else if (with_energy) {
-        range<true, false>(m, x, v, f, begin, end, lambda, mu, out);
+// fn.template operator()<kEnergy, kViscous, kFirst>() for the run-time flags
+template <class Fn>
+void with_range_flags(bool viscous, bool with_energy, bool first, Fn&& fn) {
+    const auto rest = [&]<bool kFirst>() {
+        if (viscous && with_energy) {
+            fn.template operator()<true, true, kFirst>();
+        } else if (viscous) {
+            fn.template operator()<false, true, kFirst>();
+        } else if (with_energy) {
+            fn.template operator()<true, false, kFirst>();
+        } else {
+            fn.template operator()<false, false, kFirst>();
+        }
+    };
+    if (first) {
+        rest.template operator()<true>();
     } else {
-        range<false, false>(m, x, v, f, begin, end, lambda, mu, out);
+        rest.template operator()<false>();
     }
 }
 
+}  // namespace
+
+void cst_range_avx512(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
+                      Real lambda, Real mu, bool viscous, bool with_energy, ElementPass& out,
+                      bool first) {
+    with_range_flags(viscous, with_energy, first, [&]<bool kEnergy, bool kViscous, bool kFirst>() {
+        range<kEnergy, kViscous, kFirst>(m, x, v, f, begin, end, lambda, mu, out);
+    });
+}
+
 void cst_range_avx2(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId begin, TriId end,
-                    Real lambda, Real mu, bool viscous, bool with_energy, ElementPass& out) {
-    if (viscous && with_energy) {
-        range_avx2<true, true>(m, x, v, f, begin, end, lambda, mu, out);
-    } else if (viscous) {
-        range_avx2<false, true>(m, x, v, f, begin, end, lambda, mu, out);
-    } else if (with_energy) {
-        range_avx2<true, false>(m, x, v, f, begin, end, lambda, mu, out);
-    } else {
-        range_avx2<false, false>(m, x, v, f, begin, end, lambda, mu, out);
-    }
+                    Real lambda, Real mu, bool viscous, bool with_energy, ElementPass& out,
+                    bool first) {
+    with_range_flags(viscous, with_energy, first, [&]<bool kEnergy, bool kViscous, bool kFirst>() {
+        range_avx2<kEnergy, kViscous, kFirst>(m, x, v, f, begin, end, lambda, mu, out);
+    });
 }
 
 }  // namespace fdem::detail

@@ -388,37 +388,41 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
 
     // 2. clear forces (without contact, f_contact is never written and stays zero)
     Vec2* fc = s.f_contact.data();
+    // the serial step's element pass stores the forces of nodes no other triangle has (jointed
+    // bodies, first_internal_forces()): f is zeroed on the other nodes only
+    const bool first_writer = plan == nullptr;
     if (plan != nullptr && plan->ghosts.active &&
         (m.contact.algorithm == ContactAlgorithm::None ||
          m.contact.algorithm == ContactAlgorithm::Smooth)) {
         // a distributed run: only the nodes this process adds forces to (StepPlan::clear_f,
         // clear_fc)
         clear_forces(m, s, *plan);
-    } else if (m.contact.algorithm != ContactAlgorithm::None) {
+    } else {
         // f_contact: at the nodes the last applies reached when they are few
-        // (ContactState::fc_nodes), else with f at every node
-        if (clear_listed_contact_forces(s, nn)) {
+        // (ContactState::fc_nodes), else at every node
+        if (m.contact.algorithm != ContactAlgorithm::None && !clear_listed_contact_forces(s, nn)) {
+#pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
+            for (NodeId i = 0; i < nn; ++i)
+                fc[i] = {};
+        }
+        if (first_writer) {
+            for (const auto& [b, e] : m.element_schedule.clear_runs) {
+#pragma omp parallel for schedule(static) if (e - b >= kMinParallelNodes)
+                for (NodeId i = b; i < e; ++i)
+                    f[i] = {};
+            }
+        } else {
 #pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
             for (NodeId i = 0; i < nn; ++i)
                 f[i] = {};
-        } else {
-#pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
-            for (NodeId i = 0; i < nn; ++i) {
-                f[i] = {};
-                fc[i] = {};
-            }
         }
-    } else {
-#pragma omp parallel for schedule(static) if (nn >= kMinParallelNodes)
-        for (NodeId i = 0; i < nn; ++i)
-            f[i] = {};
     }
 
     // 3. internal forces (parallel over the element schedule, deterministic)
     ElementPass pass;
     ExactSum element_sums[2];  // (distributed: this process's strain energy and viscous power)
     if (plan == nullptr) {
-        pass = add_internal_forces(m, s);
+        pass = first_internal_forces(m, s);  // (first_writer: the clear above left their nodes)
     } else {
         // owner computes (spec D7.1); energies as exact sums over the processes (theory §4.4)
         const ElementSubsetPass sp = add_internal_forces(m, s, plan->elements, plan->viscous);

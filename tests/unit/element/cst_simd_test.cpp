@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "element/cst.hpp"
+#include "fdem/scenario.hpp"
 #include "fdem/simulate.hpp"
 #include "support/hash.hpp"
 #include "support/scenes.hpp"
@@ -302,6 +303,115 @@ TEST(CstSimd, ParticleBoxStepsAreBitwiseTheSame) {
     o.nx = o.ny = 20;  // chunks of many 5-8 triangle bodies: partial groups everywhere; contact
     const Model m = scenes::make_particle_box(o);
     expect_same_run(m, 200, 2, 1e-5);
+}
+
+// first_internal_forces (the serial step's element pass, docs/performance.md "Stop 49"): the
+// chunks of a jointed block (every triangle its own nodes) store their nodes' forces, so f there
+// may hold anything before the pass; the forces, energies and smallest det F must be the bits of
+// zeroing f and adding (add_internal_forces), for every kernel, with and without the energy,
+// elastic and viscous, inverted triangles included (their nodes get the cleared zeros), on 1 and
+// 2 threads. Without fracture no chunk is a first writer and every node is cleared.
+TEST(CstSimd, FirstWriterChunksStoreTheBitsOfClearAndAdd) {
+    KernelGuard guard;
+    std::vector<CstKernel> kernels{CstKernel::Portable};
+    for (const CstKernel k : simd_kernels())
+        kernels.push_back(k);
+    for (const Real viscosity : {0.0, 2000.0}) {
+        scenes::BlockOptions o;
+        o.num_tris = 20000;  // parallel pass (> 32 chunks), a partial group per chunk end
+        o.jointed = true;
+        o.viscosity = viscosity;
+        const Model m = scenes::make_block(o);
+        const ElementSchedule& sc = m.element_schedule;
+        ASSERT_EQ(sc.chunk_first.size(), static_cast<size_t>(sc.num_chunks()));
+        EXPECT_TRUE(std::all_of(sc.chunk_first.begin(), sc.chunk_first.end(),
+                                [](uint8_t c) { return c == 1; }));
+        EXPECT_TRUE(sc.clear_runs.empty());  // every node is a triangle's own
+        for (const Real amplitude : {0.1, 0.6}) {
+            const std::vector<Vec2> x = perturbed(m, amplitude, 5);
+            const std::vector<Vec2> v = random_velocities(x.size(), 0.3, 9);
+            for (const CstKernel k : kernels) {
+                for (const bool energy : {false, true}) {
+                    for (const int threads : {1, 2}) {
+                        SCOPED_TRACE(testing::Message()
+                                     << "eta " << viscosity << ", amplitude " << amplitude
+                                     << ", kernel " << static_cast<int>(k) << ", energy " << energy
+                                     << ", threads " << threads);
+                        set_cst_kernel(k);
+                        omp_set_num_threads(threads);
+                        Pass r[2];
+                        for (int first = 0; first < 2; ++first) {
+                            State s = make_state(m, 1e-6);
+                            s.x = x;
+                            s.v = v;
+                            s.need_energy = energy;
+                            if (first) {
+                                // what a step leaves: last step's forces; here NaN everywhere
+                                std::fill(s.f.begin(), s.f.end(), Vec2{NAN, NAN});
+                                r[first].p = first_internal_forces(m, s);
+                            } else {
+                                std::fill(s.f.begin(), s.f.end(), Vec2{});
+                                r[first].p = add_internal_forces(m, s);
+                            }
+                            r[first].f = s.f;
+                        }
+                        expect_same_bits(r[0], r[1]);
+                        if (amplitude > 0.5) EXPECT_LT(r[0].p.min_jacobian, 0);
+                    }
+                }
+            }
+        }
+    }
+    omp_set_num_threads(omp_get_num_procs());
+    // a continuum (shared nodes): no first writer, one clear run of every node
+    scenes::BlockOptions o;
+    o.num_tris = 2000;
+    const Model m = scenes::make_block(o);
+    EXPECT_TRUE(std::none_of(m.element_schedule.chunk_first.begin(),
+                             m.element_schedule.chunk_first.end(), [](uint8_t c) { return c; }));
+    ASSERT_EQ(m.element_schedule.clear_runs.size(), 1u);
+    EXPECT_EQ(m.element_schedule.clear_runs[0][0], 0);
+    EXPECT_EQ(m.element_schedule.clear_runs[0][1], m.num_nodes());
+}
+
+// A scenario with a jointed specimen between continuum platens (example 09, UCS): the
+// specimen's chunks are first writers, the platens' nodes (and only theirs) are cleared.
+TEST(CstSimd, FirstWriterScheduleOfTheUcsExample) {
+    const Scenario sc = load_scenario(FDEM_SOURCE_DIR "/examples/09_ucs/scenario.toml");
+    const Model& m = sc.model;
+    const ElementSchedule& es = m.element_schedule;
+    std::vector<int> uses(static_cast<size_t>(m.num_nodes()), 0);
+    for (const auto& q : m.tri_nodes) {
+        for (NodeId n : q)
+            ++uses[static_cast<size_t>(n)];
+    }
+    std::vector<uint8_t> cleared(static_cast<size_t>(m.num_nodes()), 0);
+    for (const auto& [b, e] : es.clear_runs) {
+        ASSERT_LT(b, e);
+        for (NodeId n = b; n < e; ++n)
+            cleared[static_cast<size_t>(n)] = 1;
+    }
+    int first_chunks = 0;
+    std::vector<uint8_t> stored(static_cast<size_t>(m.num_nodes()), 0);
+    for (int32_t k = 0; k < es.num_chunks(); ++k) {
+        const auto [b, e] = es.chunk_tris[static_cast<size_t>(k)];
+        bool own = true;
+        for (TriId t = b; t < e; ++t) {
+            for (NodeId n : m.tri_nodes[t])
+                own = own && uses[static_cast<size_t>(n)] == 1;
+        }
+        EXPECT_EQ(es.chunk_first[static_cast<size_t>(k)] != 0, own) << "chunk " << k;
+        if (!es.chunk_first[static_cast<size_t>(k)]) continue;
+        ++first_chunks;
+        for (TriId t = b; t < e; ++t) {
+            for (NodeId n : m.tri_nodes[t])
+                stored[static_cast<size_t>(n)] = 1;
+        }
+    }
+    EXPECT_GT(first_chunks, 0);
+    EXPECT_LT(first_chunks, es.num_chunks());   // the platens share nodes
+    for (NodeId n = 0; n < m.num_nodes(); ++n)  // each node is stored or cleared, never both
+        ASSERT_NE(stored[static_cast<size_t>(n)], cleared[static_cast<size_t>(n)]) << "node " << n;
 }
 
 }  // namespace
