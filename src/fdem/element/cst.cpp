@@ -377,7 +377,7 @@ ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_ow
 }
 
 ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSubset& subset,
-                                      bool viscous_power) {
+                                      bool viscous_power, bool first) {
     const ElementSchedule& sc = m.element_schedule;
     const int32_t nk = static_cast<int32_t>(subset.chunks.size());
     const int32_t ncolors = static_cast<int32_t>(subset.color_begin.size()) - 1;
@@ -388,14 +388,15 @@ ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSub
         s, subset.color_begin.data(), ncolors, nk,
         [&](int32_t i, const Vec2* x, const Vec2* v, Vec2* f, bool with_energy, ElementPass& p) {
             const int32_t k = subset.chunks[static_cast<size_t>(i)];
+            const bool store = first && sc.chunk_first[static_cast<size_t>(k)] != 0;
             if (whole_counted && subset.counts_energy[static_cast<size_t>(i)]) {
-                material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy,
-                               p);
+                material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy, p,
+                               store);
                 return;
             }
             for (int32_t r = subset.run_begin[i]; r < subset.run_begin[i + 1]; ++r) {
                 const auto& run = subset.runs[static_cast<size_t>(r)];
-                material_range(m, x, v, f, run[0], run[1], with_energy, p);
+                material_range(m, x, v, f, run[0], run[1], with_energy, p, store);
             }
         });
     // the counted chunks' partials, exactly (theory §4.4); the smallest det F over every

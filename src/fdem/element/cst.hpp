@@ -83,9 +83,11 @@ struct ElementSubsetPass {
 
 /// add_internal_forces(m, s) over the chunks of `subset` only: the same kernel, colors and
 /// per-chunk partial sums; energies over the chunks it counts (whole when s.need_energy or
-/// `viscous_power`), the smallest det F over the triangles it runs.
+/// `viscous_power`), the smallest det F over the triangles it runs. first: as
+/// first_internal_forces(), the chunk_first chunks store their nodes' forces (a distributed
+/// step, whose StepPlan::clear_f leaves out the nodes of those chunks' runs).
 ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSubset& subset,
-                                      bool viscous_power = true);
+                                      bool viscous_power = true, bool first = false);
 
 /// Cut the triangles of the non-fixed bodies into chunks and color them so that chunks of one
 /// color share no node (greedy, in chunk order). Depends only on the model, never on the thread

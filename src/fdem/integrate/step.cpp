@@ -291,7 +291,10 @@ void make_runs(std::span<const uint8_t> mark, NodeRuns& out) {
 // runs and chunks, the load nodes) and the nodes of the bodies.csv sets it sums whose f it reads
 // (ContactShare::f_readers): every node its element pass, loads and contact apply write f at;
 // StepPlan::clear_fc: those and the nodes whose f_contact only its sets read
-// (ContactShare::force_readers), where the contact apply writes f_contact only
+// (ContactShare::force_readers), where the contact apply writes f_contact only. clear_f leaves
+// out the nodes of the triangles of its element runs in ElementSchedule::chunk_first chunks: the
+// element pass stores their forces every step (first_internal_forces(); a chunk it runs whole on
+// energy steps holds those runs too)
 void make_clear_runs(const Model& m, const StepPlan& p) {
     std::vector<uint8_t> mark(static_cast<size_t>(m.num_nodes()), 0);
     for (const auto& [b, e] : p.own_runs)
@@ -301,11 +304,23 @@ void make_clear_runs(const Model& m, const StepPlan& p) {
     for (const auto& [i, r] : p.contact.f_readers) {
         if (r == p.rank) mark[static_cast<size_t>(i)] = 1;
     }
-    make_runs(mark, p.clear_f);
+    std::vector<uint8_t> mark_fc = mark;
     for (const auto& [i, r] : p.contact.force_readers) {
-        if (r == p.rank) mark[static_cast<size_t>(i)] = 1;
+        if (r == p.rank) mark_fc[static_cast<size_t>(i)] = 1;
     }
-    make_runs(mark, p.clear_fc);
+    make_runs(mark_fc, p.clear_fc);
+    const ElementSubset& es = p.elements;
+    for (size_t k = 0; k < es.chunks.size(); ++k) {
+        if (!m.element_schedule.chunk_first[static_cast<size_t>(es.chunks[k])]) continue;
+        for (int32_t r = es.run_begin[k]; r < es.run_begin[k + 1]; ++r) {
+            const auto [b, e] = es.runs[static_cast<size_t>(r)];
+            for (TriId t = b; t < e; ++t) {
+                for (NodeId n : m.tri_nodes[t])
+                    mark[static_cast<size_t>(n)] = 0;
+            }
+        }
+    }
+    make_runs(mark, p.clear_f);
     p.clear_valid = true;
 }
 
@@ -425,7 +440,9 @@ void step_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm)
         pass = first_internal_forces(m, s);  // (first_writer: the clear above left their nodes)
     } else {
         // owner computes (spec D7.1); energies as exact sums over the processes (theory §4.4)
-        const ElementSubsetPass sp = add_internal_forces(m, s, plan->elements, plan->viscous);
+        // (first = true: the chunk_first chunks store, make_clear_runs() left their nodes)
+        const ElementSubsetPass sp =
+            add_internal_forces(m, s, plan->elements, plan->viscous, /*first=*/true);
         // strain energy and viscous power: summed over the processes with the node update's
         // sums at the end of the step (one reduction)
         element_sums[0] = sp.strain_energy;
