@@ -121,6 +121,10 @@ struct Joints {
     std::vector<NodeId> gather_node;
     std::vector<int32_t> gather_begin;  ///< gather_node.size() + 1 offsets into gather_entry
     std::vector<int32_t> gather_entry;
+    /// set by renumber_spatially(): the joints are sorted by node 0 along the Morton curve, so
+    /// side B's nodes (3, 2) jump through memory and joint_forces prefetches them (a large model;
+    /// docs/performance.md "Stop 49"). Changes no value.
+    bool sorted_by_node0 = false;
     int32_t num_joints() const { return static_cast<int32_t>(nodes.size()); }
 };
 

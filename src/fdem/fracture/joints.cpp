@@ -24,6 +24,13 @@ inline constexpr Real kMinLengthRatio = 1e-9;  // spec §2 guard: h < 1e-9 h_0 i
 // joints done by the blocked path
 inline constexpr size_t kSlots = 6;
 inline constexpr Real kInf = std::numeric_limits<Real>::infinity();
+// From this many joints on, the blocked loop prefetches the far-side nodes of the block
+// kPrefetchBlocks ahead when the joints are in Morton order (Joints::sorted_by_node0; run_range(),
+// docs/performance.md "Stop 49": -33 % of the jointed step at 131 k and 1 M triangles; +2 ... +9 %
+// at 16 k, whose ~8 MB stay in cache, hence the threshold; +15 % on the row-ordered joints of
+// bench_joints, whose regular strides the hardware prefetchers follow, hence the order test)
+inline constexpr int32_t kPrefetchJoints = 1 << 16;
+inline constexpr int32_t kPrefetchBlocks = 3;
 
 }  // namespace
 
@@ -630,7 +637,25 @@ void run_range(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
     int32_t j = begin;
     if (const BlockFn block = g_block[kEnergy ? 1 : 0]) {
         Block B;
+        // The joints are in the order of node 0 (model/renumber.cpp), so side A's nodes (0, 1)
+        // stream through memory, but side B's (3, 2: the neighbouring triangle) jump: their
+        // position lines (read by the block) and force lines (the scatter's read-modify-write)
+        // missed in every block of a large model. Prefetched a few blocks ahead; a prefetch
+        // changes no value.
+        const bool prefetch = J.sorted_by_node0 && J.num_joints() >= kPrefetchJoints;
+        const auto* __restrict nodes = J.nodes.data();
         for (; j + kLanes <= end; j += kLanes) {
+            if (prefetch && j + (kPrefetchBlocks + 1) * kLanes <= end) {
+                for (int l = 0; l < kLanes; ++l) {
+                    const auto& nd = nodes[static_cast<size_t>(j + kPrefetchBlocks * kLanes + l)];
+                    __builtin_prefetch(x + nd[2], 0);
+                    __builtin_prefetch(x + nd[3], 0);
+                    if constexpr (kScatter) {
+                        __builtin_prefetch(f + nd[2], 1);
+                        __builtin_prefetch(f + nd[3], 1);
+                    }
+                }
+            }
             if (block(J, s, x, j, B)) {
                 commit_block<kEnergy, kScatter>(J, s, f, j, B, out);
                 out.blocked += kLanes;

@@ -146,6 +146,7 @@ bool renumber_spatially(Model& m, std::vector<int32_t>* node_new_out) {
         apply(J.nodes);
         apply(J.length0);
         apply(J.law);
+        J.sorted_by_node0 = true;
         for (int32_t& j : m.prebroken_joints)
             j = joint_new[static_cast<size_t>(j)];
         std::sort(m.prebroken_joints.begin(), m.prebroken_joints.end());

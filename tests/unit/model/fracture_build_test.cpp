@@ -357,6 +357,7 @@ TEST(FractureBuild, RenumberedJointsFollowTheMortonOrder) {
     for (size_t j = 1; j < m.joints.nodes.size(); ++j)
         sorted = sorted && m.joints.nodes[j - 1][0] < m.joints.nodes[j][0];
     EXPECT_TRUE(sorted);
+    EXPECT_TRUE(m.joints.sorted_by_node0);  // (joint_forces prefetches side B of large models)
     ASSERT_EQ(m.prebroken_joints.size(), 1u);
     const auto& n = m.joints.nodes[static_cast<size_t>(m.prebroken_joints[0])];
     const Vec2 a = m.node_x0[static_cast<size_t>(n[0])], b = m.node_x0[static_cast<size_t>(n[1])];
@@ -364,6 +365,13 @@ TEST(FractureBuild, RenumberedJointsFollowTheMortonOrder) {
     EXPECT_NEAR(std::max(a.x, b.x), 0.42, 1e-12);
     EXPECT_NEAR(a.y, 0.4, 1e-12);
     EXPECT_NEAR(b.y, 0.4, 1e-12);
+    // a body below kRenumberMinTris keeps its mesh order, and its joints theirs
+    Model small = jointed_material();
+    const MeshData mesh_small = make_rectangle_mesh(0, 0, 1, 1, 10, 10);
+    add_bodies(small, mesh_small, all_tris(mesh_small), fracture_options());
+    finalize_model(small);
+    ASSERT_GT(small.joints.num_joints(), 0);
+    EXPECT_FALSE(small.joints.sorted_by_node0);
 }
 
 // stable_time_step of a jointed body (theory eq. 9.21): the largest omega^2 of M^-1 (K_e + K_j),
