@@ -64,6 +64,57 @@ void joints(benchmark::State& st, bool energy) {
     st.counters["omp_threads"] = static_cast<double>(st.range(1));
 }
 
+// The joints of the jointed block as a model gets them (scenes::make_block, jointed: finalize_model
+// renumbers along the Morton curve and sorts the joints by node 0, Joints::sorted_by_node0, so
+// large models prefetch side B; docs/performance.md "Stop 49"), positions perturbed as above.
+struct ModelJointScene {
+    Model m;
+    std::vector<Vec2> x;
+};
+
+const ModelJointScene& cached_model_scene(int64_t num_tris) {
+    static std::map<int64_t, std::unique_ptr<ModelJointScene>> cache;
+    auto& slot = cache[num_tris];
+    if (!slot) {
+        cache.clear();  // one at a time: the 1 M scene holds ~0.5 GB
+        auto fresh = std::make_unique<ModelJointScene>();
+        scenes::BlockOptions o;
+        o.num_tris = num_tris;
+        o.jointed = true;
+        fresh->m = scenes::make_block(o);
+        const Joints& J = fresh->m.joints;
+        const JointLaw& L = J.laws[0];
+        const Real h = 1.0 / std::sqrt(num_tris / 2.0);
+        const Real op = 2.0 * h * L.ft / L.p;
+        std::mt19937_64 rng(1);
+        std::uniform_real_distribution<Real> U(-0.15 * op, 0.15 * op);
+        fresh->x = fresh->m.node_x0;
+        for (auto& q : fresh->x)
+            q += Vec2{U(rng), U(rng)};
+        cache[num_tris] = std::move(fresh);
+    }
+    return *cache[num_tris];
+}
+
+void BM_JointsNoEnergyModel(benchmark::State& st) {
+    omp_set_num_threads(static_cast<int>(st.range(1)));
+    const ModelJointScene& sc = cached_model_scene(st.range(0));
+    const Joints& J = sc.m.joints;
+    JointState s = make_joint_state(J);
+    std::vector<Vec2> f(sc.x.size());
+    int32_t softening = 0;
+    for (auto _ : st) {
+        const JointPass p = joint_forces(J, s, sc.x, f, false);
+        softening += p.softening;
+        benchmark::DoNotOptimize(p.work);
+    }
+    if (softening != 0) st.SkipWithError("joints left the elastic range");
+    st.SetItemsProcessed(st.iterations() * J.num_joints());
+    st.counters["joints"] = static_cast<double>(J.num_joints());
+    st.counters["omp_threads"] = static_cast<double>(st.range(1));
+    st.counters["sorted_by_node0"] = J.sorted_by_node0 ? 1 : 0;
+}
+
 void BM_Joints(benchmark::State& st) {
     joints(st, true);
 }
@@ -78,6 +129,7 @@ void sizes(benchmark::internal::Benchmark* b) {
 }
 
 BENCHMARK(BM_Joints)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JointsNoEnergyModel)->Apply(sizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_JointsNoEnergy)->Apply(sizes)->Unit(benchmark::kMicrosecond);
 
 // The same kernel on each vector path this CPU runs (arg 2: 0 portable, 1 AVX2, 2 AVX-512), one
