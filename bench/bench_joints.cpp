@@ -19,6 +19,16 @@ struct JointScene {
     std::vector<Vec2> x;
 };
 
+// x0 moved by seeded random offsets up to 0.15 o_p in each component (o_p the elastic opening
+// 2 h f_t / p): every joint loaded, none beyond its elastic range
+std::vector<Vec2> perturbed(std::vector<Vec2> x0, Real op) {
+    std::mt19937_64 rng(1);
+    std::uniform_real_distribution<double> U(-0.15 * op, 0.15 * op);
+    for (auto& p : x0)
+        p += Vec2{U(rng), U(rng)};
+    return x0;
+}
+
 const JointScene& cached_scene(int64_t num_tris) {
     static std::map<int64_t, std::unique_ptr<JointScene>> cache;
     auto& slot = cache[num_tris];
@@ -37,31 +47,31 @@ const JointScene& cached_scene(int64_t num_tris) {
         slot->J.laws.push_back(make_joint_law(jm));
         add_edge_joints(slot->J, sm.x0, sm.tris, sm.vertex, 0);
         finalize_joints(slot->J, static_cast<int32_t>(sm.x0.size()));
-        const double op = 2.0 * (1.0 / n) * jm.tensile_strength / jm.penalty;
-        std::mt19937_64 rng(1);
-        std::uniform_real_distribution<double> U(-0.15 * op, 0.15 * op);
-        slot->x = sm.x0;
-        for (auto& p : slot->x)
-            p += Vec2{U(rng), U(rng)};
+        slot->x = perturbed(sm.x0, 2.0 * (1.0 / n) * jm.tensile_strength / jm.penalty);
     }
     return *slot;
 }
 
-void joints(benchmark::State& st, bool energy) {
+// joint_forces of J at positions x, timed; items = joint-steps
+void run_kernel(benchmark::State& st, const Joints& J, const std::vector<Vec2>& x, bool energy) {
     omp_set_num_threads(static_cast<int>(st.range(1)));
-    const JointScene& sc = cached_scene(st.range(0));
-    JointState s = make_joint_state(sc.J);
-    std::vector<Vec2> f(sc.x.size());
+    JointState s = make_joint_state(J);
+    std::vector<Vec2> f(x.size());
     int32_t softening = 0;
     for (auto _ : st) {
-        const JointPass p = joint_forces(sc.J, s, sc.x, f, energy);
+        const JointPass p = joint_forces(J, s, x, f, energy);
         softening += p.softening;
         benchmark::DoNotOptimize(p.work);
     }
     if (softening != 0) st.SkipWithError("joints left the elastic range");
-    st.SetItemsProcessed(st.iterations() * sc.J.num_joints());
-    st.counters["joints"] = static_cast<double>(sc.J.num_joints());
+    st.SetItemsProcessed(st.iterations() * J.num_joints());
+    st.counters["joints"] = static_cast<double>(J.num_joints());
     st.counters["omp_threads"] = static_cast<double>(st.range(1));
+}
+
+void joints(benchmark::State& st, bool energy) {
+    const JointScene& sc = cached_scene(st.range(0));
+    run_kernel(st, sc.J, sc.x, energy);
 }
 
 // The joints of the jointed block as a model gets them (scenes::make_block, jointed: finalize_model
@@ -74,45 +84,25 @@ struct ModelJointScene {
 
 const ModelJointScene& cached_model_scene(int64_t num_tris) {
     static std::map<int64_t, std::unique_ptr<ModelJointScene>> cache;
-    auto& slot = cache[num_tris];
-    if (!slot) {
+    if (!cache.contains(num_tris)) {
         cache.clear();  // one at a time: the 1 M scene holds ~0.5 GB
         auto fresh = std::make_unique<ModelJointScene>();
         scenes::BlockOptions o;
         o.num_tris = num_tris;
         o.jointed = true;
         fresh->m = scenes::make_block(o);
-        const Joints& J = fresh->m.joints;
-        const JointLaw& L = J.laws[0];
+        const JointLaw& L = fresh->m.joints.laws[0];
         const Real h = 1.0 / std::sqrt(num_tris / 2.0);
-        const Real op = 2.0 * h * L.ft / L.p;
-        std::mt19937_64 rng(1);
-        std::uniform_real_distribution<Real> U(-0.15 * op, 0.15 * op);
-        fresh->x = fresh->m.node_x0;
-        for (auto& q : fresh->x)
-            q += Vec2{U(rng), U(rng)};
+        fresh->x = perturbed(fresh->m.node_x0, 2.0 * h * L.ft / L.p);
         cache[num_tris] = std::move(fresh);
     }
     return *cache[num_tris];
 }
 
 void BM_JointsNoEnergyModel(benchmark::State& st) {
-    omp_set_num_threads(static_cast<int>(st.range(1)));
     const ModelJointScene& sc = cached_model_scene(st.range(0));
-    const Joints& J = sc.m.joints;
-    JointState s = make_joint_state(J);
-    std::vector<Vec2> f(sc.x.size());
-    int32_t softening = 0;
-    for (auto _ : st) {
-        const JointPass p = joint_forces(J, s, sc.x, f, false);
-        softening += p.softening;
-        benchmark::DoNotOptimize(p.work);
-    }
-    if (softening != 0) st.SkipWithError("joints left the elastic range");
-    st.SetItemsProcessed(st.iterations() * J.num_joints());
-    st.counters["joints"] = static_cast<double>(J.num_joints());
-    st.counters["omp_threads"] = static_cast<double>(st.range(1));
-    st.counters["sorted_by_node0"] = J.sorted_by_node0 ? 1 : 0;
+    run_kernel(st, sc.m.joints, sc.x, false);
+    st.counters["sorted_by_node0"] = sc.m.joints.sorted_by_node0 ? 1 : 0;
 }
 
 void BM_Joints(benchmark::State& st) {

@@ -518,18 +518,18 @@ ElementSchedule build_element_schedule(const Model& m) {
     std::vector<uint8_t> uses(static_cast<size_t>(m.num_nodes()), 0);
     for (const auto& q : m.tri_nodes) {
         for (NodeId n : q)
-            uses[static_cast<size_t>(n)] = static_cast<uint8_t>(std::min(2, uses[n] + 1));
+            uses[static_cast<size_t>(n)] =
+                static_cast<uint8_t>(std::min(2, uses[static_cast<size_t>(n)] + 1));
     }
     std::vector<uint8_t> written(static_cast<size_t>(m.num_nodes()), 0);
     sc.chunk_first.assign(n_chunks, 0);
     for (size_t k = 0; k < n_chunks; ++k) {
         const auto [b, e] = sc.chunk_tris[k];
-        if (m.bodies[m.tri_body[b]].element != ElementKind::Cst) continue;
         bool own = true;
         for (TriId t = b; t < e && own; ++t) {
+            own = m.bodies[m.tri_body[t]].element == ElementKind::Cst;
             for (NodeId n : m.tri_nodes[t])
-                own = own && m.bodies[m.tri_body[t]].element == ElementKind::Cst &&
-                      uses[static_cast<size_t>(n)] == 1;
+                own = own && uses[static_cast<size_t>(n)] == 1;
         }
         if (!own) continue;
         sc.chunk_first[k] = 1;
