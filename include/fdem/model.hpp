@@ -123,13 +123,21 @@ struct MassDamping {
 };
 
 /// Parallel schedule of the element loop, derived by finalize_model() (docs/performance.md).
-/// The triangles of each non-fixed body are cut into chunks of contiguous ids; chunks of one
-/// color share no node, so they run concurrently, and every node sums the forces of its
-/// triangles in one fixed order (color, chunk, triangle) whatever the thread count.
+/// The triangles of each non-fixed body are cut into chunks of contiguous ids, and runs of
+/// consecutive chunks into units (one chunk each in models under 131 072 triangles, up to 16 in
+/// larger ones: a unit's triangles stream through memory in one pass). Units of one color share
+/// no node, so they run concurrently, and every node sums the forces of its triangles in one
+/// fixed order (color, chunk, triangle) whatever the thread count.
 struct ElementSchedule {
-    std::vector<std::array<TriId, 2>> chunk_tris;  ///< [begin, end) per chunk, sorted by color
-    std::vector<BodyId> chunk_body;                ///< (first) body of each chunk
+    /// [begin, end) per chunk, sorted by (color of its unit, chunk): a unit's chunks are
+    /// consecutive here and in triangle ids
+    std::vector<std::array<TriId, 2>> chunk_tris;
+    std::vector<BodyId> chunk_body;    ///< (first) body of each chunk
     std::vector<int32_t> color_begin;  ///< chunks of color c: [color_begin[c], color_begin[c+1])
+    /// unit u: chunks [unit_begin[u], unit_begin[u + 1]) (one more entry than units)
+    std::vector<int32_t> unit_begin;
+    /// units of color c: [color_units[c], color_units[c + 1]) (one more entry than colors)
+    std::vector<int32_t> color_units;
     /// per chunk: 1 when it is of CST triangles whose every node belongs to that one triangle (a
     /// jointed body: fracture splits every vertex), so the serial step's element pass is the
     /// first writer of those nodes' forces and stores them (first_internal_forces())

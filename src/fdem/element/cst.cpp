@@ -37,6 +37,15 @@ static_assert(kChunkTris % 4 == 0);
 /// barrier per color cost more than the work they would share.
 constexpr int32_t kMinParallelChunks = 32;
 
+/// Units (element_unit_chunks()): at most this many chunks each, and at least kMinUnits units
+/// where there are enough chunks. Why (docs/performance.md "Stop 50"): run color after color,
+/// one-chunk units make the pass jump through the triangle and node arrays every 256 triangles;
+/// at 10^6 triangles that cost the pass 40-50 % against a pass in triangle order, and units of
+/// 16 chunks (4 096 triangles, ~200 KB of triangle data streamed at a time) recover nearly all
+/// of it while a 10^6-triangle model keeps ~40 units per color for the threads.
+constexpr int32_t kMaxUnitChunks = 16;
+constexpr int32_t kMinUnits = 256;
+
 /// Partial sums stored per chunk in State::scratch_sums.
 constexpr size_t kChunkSlots = 4;
 
@@ -228,16 +237,17 @@ void material_range(const Model& m, const Vec2* x, const Vec2* v, Vec2* f, TriId
     }
 }
 
-// The element chunks of each color c, entries [color_begin[c], color_begin[c+1]) one color after
-// the other (implicit barrier at the end of each omp for); run_entry(i, x, v, f, with_energy, p)
-// runs entry i (material_range() over its triangles) and it leaves its partials in the returned
+// The element units of each color c, [color_units[c], color_units[c+1]), one color after the
+// other (implicit barrier at the end of each omp for); unit u is the entries [unit_begin[u],
+// unit_begin[u + 1]), run in order by one thread; run_entry(i, x, v, f, with_energy, p) runs
+// entry i (material_range() over its triangles) and it leaves its partials in the returned
 // array at kChunkSlots * i (strain energy, viscous power, smallest det F, its triangle). The
-// chunks of a color touch disjoint nodes, so their scatter needs no atomics; dynamic scheduling
-// only changes which thread runs a chunk, never the order in which a node is updated. Uses
+// units of a color touch disjoint nodes, so their scatter needs no atomics; dynamic scheduling
+// only changes which thread runs a unit, never the order in which a node is updated. Uses
 // s.scratch_sums (sized on first use).
 template <class RunEntry>
-const Real* run_chunks(State& s, const int32_t* color_begin, int32_t ncolors, int32_t n,
-                       RunEntry run_entry) {
+const Real* run_chunks(State& s, const int32_t* color_units, int32_t ncolors,
+                       const int32_t* unit_begin, int32_t n, RunEntry run_entry) {
     if (s.scratch_sums.size() < kChunkSlots * static_cast<size_t>(n)) {
         s.scratch_sums.resize(kChunkSlots * static_cast<size_t>(n));  // first call only
     }
@@ -249,14 +259,16 @@ const Real* run_chunks(State& s, const int32_t* color_begin, int32_t ncolors, in
 #pragma omp parallel if (n >= kMinParallelChunks)
     for (int32_t c = 0; c < ncolors; ++c) {
 #pragma omp for schedule(dynamic, 1)
-        for (int32_t i = color_begin[c]; i < color_begin[c + 1]; ++i) {
-            ElementPass p;
-            run_entry(i, x, v, f, with_energy, p);
-            Real* slot = part + kChunkSlots * static_cast<size_t>(i);
-            slot[0] = p.strain_energy;
-            slot[1] = p.viscous_power;
-            slot[2] = p.min_jacobian;
-            slot[3] = static_cast<Real>(p.min_jacobian_tri);
+        for (int32_t u = color_units[c]; u < color_units[c + 1]; ++u) {
+            for (int32_t i = unit_begin[u]; i < unit_begin[u + 1]; ++i) {
+                ElementPass p;
+                run_entry(i, x, v, f, with_energy, p);
+                Real* slot = part + kChunkSlots * static_cast<size_t>(i);
+                slot[0] = p.strain_energy;
+                slot[1] = p.viscous_power;
+                slot[2] = p.min_jacobian;
+                slot[3] = static_cast<Real>(p.min_jacobian_tri);
+            }
         }
     }
     return part;
@@ -304,9 +316,9 @@ namespace {
 ElementPass schedule_pass(const Model& m, State& s, bool first) {
     const ElementSchedule& sc = m.element_schedule;
     const int32_t nc = sc.num_chunks();
-    const int32_t ncolors = static_cast<int32_t>(sc.color_begin.size()) - 1;
+    const int32_t ncolors = static_cast<int32_t>(sc.color_units.size()) - 1;
     const Real* part = run_chunks(
-        s, sc.color_begin.data(), ncolors, nc,
+        s, sc.color_units.data(), ncolors, sc.unit_begin.data(), nc,
         [&](int32_t k, const Vec2* x, const Vec2* v, Vec2* f, bool with_energy, ElementPass& p) {
             material_range(m, x, v, f, sc.chunk_tris[k][0], sc.chunk_tris[k][1], with_energy, p,
                            first && sc.chunk_first[static_cast<size_t>(k)] != 0);
@@ -342,36 +354,45 @@ ElementPass first_internal_forces(const Model& m, State& s) {
 
 ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_owner, int32_t rank) {
     const ElementSchedule& sc = m.element_schedule;
-    const int32_t ncolors = static_cast<int32_t>(sc.color_begin.size()) - 1;
+    const int32_t ncolors = static_cast<int32_t>(sc.color_units.size()) - 1;
     ElementSubset out;
     out.color_begin.push_back(0);
+    out.color_units.push_back(0);
+    out.unit_begin.push_back(0);
     out.run_begin.push_back(0);
     for (int32_t c = 0; c < ncolors; ++c) {
-        for (int32_t k = sc.color_begin[c]; k < sc.color_begin[c + 1]; ++k) {
-            const TriId b = sc.chunk_tris[k][0], e = sc.chunk_tris[k][1];
-            const size_t first_run = out.runs.size();
-            for (TriId t = b; t < e; ++t) {
-                bool mine = false;
-                for (NodeId n : m.tri_nodes[t])
-                    mine = mine || node_owner[n] == rank;
-                if (!mine) continue;
-                if (out.runs.size() > first_run && out.runs.back()[1] == t) {
-                    ++out.runs.back()[1];
-                } else {
-                    out.runs.push_back({t, t + 1});
+        for (int32_t u = sc.color_units[c]; u < sc.color_units[c + 1]; ++u) {
+            for (int32_t k = sc.unit_begin[u]; k < sc.unit_begin[u + 1]; ++k) {
+                const TriId b = sc.chunk_tris[k][0], e = sc.chunk_tris[k][1];
+                const size_t first_run = out.runs.size();
+                for (TriId t = b; t < e; ++t) {
+                    bool mine = false;
+                    for (NodeId n : m.tri_nodes[t])
+                        mine = mine || node_owner[n] == rank;
+                    if (!mine) continue;
+                    if (out.runs.size() > first_run && out.runs.back()[1] == t) {
+                        ++out.runs.back()[1];
+                    } else {
+                        out.runs.push_back({t, t + 1});
+                    }
                 }
+                if (out.runs.size() == first_run) continue;  // no triangle of an owned node
+                // a composite's sub-triangles are coupled by its pressure: the chunk whole
+                if (m.bodies[m.tri_body[b]].element == ElementKind::Composite6) {
+                    out.runs.resize(first_run);
+                    out.runs.push_back({b, e});
+                }
+                out.chunks.push_back(k);
+                out.counts_energy.push_back(node_owner[m.tri_nodes[b][0]] == rank ? 1 : 0);
+                out.run_begin.push_back(static_cast<int32_t>(out.runs.size()));
             }
-            if (out.runs.size() == first_run) continue;  // no triangle of an owned node
-            // a composite's sub-triangles are coupled by its pressure: the chunk whole
-            if (m.bodies[m.tri_body[b]].element == ElementKind::Composite6) {
-                out.runs.resize(first_run);
-                out.runs.push_back({b, e});
-            }
-            out.chunks.push_back(k);
-            out.counts_energy.push_back(node_owner[m.tri_nodes[b][0]] == rank ? 1 : 0);
-            out.run_begin.push_back(static_cast<int32_t>(out.runs.size()));
+            // the unit's chunks that have triangles of owned nodes, run in order as in the serial
+            // pass
+            if (static_cast<int32_t>(out.chunks.size()) > out.unit_begin.back())
+                out.unit_begin.push_back(static_cast<int32_t>(out.chunks.size()));
         }
         out.color_begin.push_back(static_cast<int32_t>(out.chunks.size()));
+        out.color_units.push_back(static_cast<int32_t>(out.unit_begin.size()) - 1);
     }
     return out;
 }
@@ -380,12 +401,12 @@ ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSub
                                       bool viscous_power, bool first) {
     const ElementSchedule& sc = m.element_schedule;
     const int32_t nk = static_cast<int32_t>(subset.chunks.size());
-    const int32_t ncolors = static_cast<int32_t>(subset.color_begin.size()) - 1;
+    const int32_t ncolors = static_cast<int32_t>(subset.color_units.size()) - 1;
     // the counted chunks whole where their sums are read; otherwise the runs of a chunk in
     // triangle order (the fold of each owned node unchanged)
     const bool whole_counted = s.need_energy || viscous_power;
     const Real* part = run_chunks(
-        s, subset.color_begin.data(), ncolors, nk,
+        s, subset.color_units.data(), ncolors, subset.unit_begin.data(), nk,
         [&](int32_t i, const Vec2* x, const Vec2* v, Vec2* f, bool with_energy, ElementPass& p) {
             const int32_t k = subset.chunks[static_cast<size_t>(i)];
             const bool store = first && sc.chunk_first[static_cast<size_t>(k)] != 0;
@@ -464,53 +485,80 @@ ElementSchedule build_element_schedule(const Model& m) {
         }
     }
 
-    // greedy coloring in chunk order: node_colors[n] holds a bit per color of the chunks
-    // already colored that touch node n; a chunk takes the lowest color none of its nodes has
+    // units: runs of `per` consecutive chunks (element_unit_chunks), unit k / per of chunk k
     const size_t n_chunks = chunks.size();
-    std::vector<int32_t> color(n_chunks, 0);
+    const int32_t per = element_unit_chunks(static_cast<int32_t>(n_chunks));
+    const size_t n_units = (n_chunks + static_cast<size_t>(per) - 1) / static_cast<size_t>(per);
+    const auto unit_chunks = [&](size_t u) {
+        return std::pair{u * static_cast<size_t>(per),
+                         std::min(n_chunks, (u + 1) * static_cast<size_t>(per))};
+    };
+
+    // greedy coloring in unit order: node_colors[n] holds a bit per color of the units already
+    // colored that touch node n; a unit takes the lowest color none of its nodes has
+    std::vector<int32_t> color(n_units, 0);
     std::vector<uint64_t> node_colors(static_cast<size_t>(m.num_nodes()), 0);
     int32_t ncolors = 0;
     bool overflow = false;
-    for (size_t k = 0; k < n_chunks && !overflow; ++k) {
+    for (size_t u = 0; u < n_units && !overflow; ++u) {
+        // a unit's chunks may leave out fixed bodies' triangles between them: visit each chunk
         uint64_t used = 0;
-        for (TriId t = chunks[k][0]; t < chunks[k][1]; ++t) {
-            for (NodeId n : m.tri_nodes[t])
-                used |= node_colors[static_cast<size_t>(n)];
+        const auto [k0, k1] = unit_chunks(u);
+        for (size_t k = k0; k < k1; ++k) {
+            for (TriId t = chunks[k][0]; t < chunks[k][1]; ++t) {
+                for (NodeId n : m.tri_nodes[t])
+                    used |= node_colors[static_cast<size_t>(n)];
+            }
         }
         if (used == ~uint64_t{0}) {
             overflow = true;  // more than 64 colors: never seen in 2-D meshes
             break;
         }
         const int c = std::countr_one(used);
-        color[k] = c;
+        color[u] = c;
         ncolors = std::max(ncolors, c + 1);
-        for (TriId t = chunks[k][0]; t < chunks[k][1]; ++t) {
-            for (NodeId n : m.tri_nodes[t])
-                node_colors[static_cast<size_t>(n)] |= uint64_t{1} << c;
+        for (size_t k = k0; k < k1; ++k) {
+            for (TriId t = chunks[k][0]; t < chunks[k][1]; ++t) {
+                for (NodeId n : m.tri_nodes[t])
+                    node_colors[static_cast<size_t>(n)] |= uint64_t{1} << c;
+            }
         }
     }
     if (overflow) {
-        // still correct and deterministic, only serial: one chunk per color
-        for (size_t k = 0; k < n_chunks; ++k)
-            color[k] = static_cast<int32_t>(k);
-        ncolors = static_cast<int32_t>(n_chunks);
+        // still correct and deterministic, only serial: one unit per color
+        for (size_t u = 0; u < n_units; ++u)
+            color[u] = static_cast<int32_t>(u);
+        ncolors = static_cast<int32_t>(n_units);
     }
 
-    // order the chunks by (color, chunk index): counting sort
+    // order the units by (color, unit index) (counting sort), each unit's chunks in order
     ElementSchedule sc;
-    sc.color_begin.assign(static_cast<size_t>(ncolors) + 1, 0);
-    for (size_t k = 0; k < n_chunks; ++k)
-        ++sc.color_begin[static_cast<size_t>(color[k]) + 1];
+    sc.color_units.assign(static_cast<size_t>(ncolors) + 1, 0);
+    for (size_t u = 0; u < n_units; ++u)
+        ++sc.color_units[static_cast<size_t>(color[u]) + 1];
     for (int32_t c = 0; c < ncolors; ++c)
-        sc.color_begin[c + 1] += sc.color_begin[c];
-    std::vector<int32_t> next(sc.color_begin.begin(), sc.color_begin.end() - 1);
-    sc.chunk_tris.resize(n_chunks);
-    sc.chunk_body.resize(n_chunks);
-    for (size_t k = 0; k < n_chunks; ++k) {
-        const int32_t slot = next[static_cast<size_t>(color[k])]++;
-        sc.chunk_tris[static_cast<size_t>(slot)] = chunks[k];
-        sc.chunk_body[static_cast<size_t>(slot)] = chunk_body[k];
+        sc.color_units[c + 1] += sc.color_units[c];
+    std::vector<int32_t> next(sc.color_units.begin(), sc.color_units.end() - 1);
+    std::vector<int32_t> unit_slot(n_units);
+    for (size_t u = 0; u < n_units; ++u)
+        unit_slot[u] = next[static_cast<size_t>(color[u])]++;
+    std::vector<size_t> unit_at(n_units);  // the unit in schedule position p
+    for (size_t u = 0; u < n_units; ++u)
+        unit_at[static_cast<size_t>(unit_slot[u])] = u;
+    sc.chunk_tris.reserve(n_chunks);
+    sc.chunk_body.reserve(n_chunks);
+    sc.unit_begin.push_back(0);
+    for (size_t p = 0; p < n_units; ++p) {
+        const auto [k0, k1] = unit_chunks(unit_at[p]);
+        for (size_t k = k0; k < k1; ++k) {
+            sc.chunk_tris.push_back(chunks[k]);
+            sc.chunk_body.push_back(chunk_body[k]);
+        }
+        sc.unit_begin.push_back(static_cast<int32_t>(sc.chunk_tris.size()));
     }
+    sc.color_begin.resize(sc.color_units.size());
+    for (size_t c = 0; c < sc.color_units.size(); ++c)
+        sc.color_begin[c] = sc.unit_begin[static_cast<size_t>(sc.color_units[c])];
 
     // first writers (first_internal_forces): chunks of CST triangles each of whose nodes is used
     // by that triangle alone (over every triangle of the model, fixed bodies' included); the
@@ -547,6 +595,13 @@ ElementSchedule build_element_schedule(const Model& m) {
         }
     }
     return sc;
+}
+
+int32_t element_unit_chunks(int32_t chunks) {
+    int32_t per = 1;
+    while (per < kMaxUnitChunks && chunks / (2 * per) >= kMinUnits)
+        per *= 2;
+    return per;
 }
 
 Real element_critical_dt(const Model& m, TriId t) {

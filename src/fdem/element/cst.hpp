@@ -57,8 +57,13 @@ ElementPass first_internal_forces(const Model& m, State& s);
 /// pressure couples its sub-triangles). The smallest det F is taken over every triangle a
 /// process runs (each triangle is run by the owners of its nodes), keyed by (chunk, triangle).
 struct ElementSubset {
-    std::vector<int32_t> chunks;         ///< schedule chunk ids, ascending
-    std::vector<int32_t> color_begin;    ///< chunks of color c: [color_begin[c], color_begin[c+1])
+    std::vector<int32_t> chunks;       ///< schedule chunk ids, ascending
+    std::vector<int32_t> color_begin;  ///< chunks of color c: [color_begin[c], color_begin[c+1])
+    /// the entries of chunks by unit of the schedule (ElementSchedule::unit_begin): unit u of the
+    /// subset is entries [unit_begin[u], unit_begin[u + 1]), its units of color c
+    /// [color_units[c], color_units[c + 1])
+    std::vector<int32_t> unit_begin;
+    std::vector<int32_t> color_units;
     std::vector<uint8_t> counts_energy;  ///< per entry of chunks: 1 = this process sums it
     /// per entry of chunks: its runs [run_begin[i], run_begin[i + 1]) of `runs`
     std::vector<int32_t> run_begin;
@@ -89,10 +94,15 @@ struct ElementSubsetPass {
 ElementSubsetPass add_internal_forces(const Model& m, State& s, const ElementSubset& subset,
                                       bool viscous_power = true, bool first = false);
 
-/// Cut the triangles of the non-fixed bodies into chunks and color them so that chunks of one
-/// color share no node (greedy, in chunk order). Depends only on the model, never on the thread
-/// count. Called by finalize_model().
+/// Cut the triangles of the non-fixed bodies into chunks, group consecutive chunks into units
+/// (element_unit_chunks()) and color the units so that units of one color share no node
+/// (greedy, in unit order). Depends only on the model, never on the thread count. Called by
+/// finalize_model().
 ElementSchedule build_element_schedule(const Model& m);
+
+/// Chunks per unit of a schedule of `chunks` chunks: the largest power of two up to 16 that
+/// leaves at least 256 units (1 below 512 chunks, 16 from 4096 chunks, about 10^6 triangles).
+int32_t element_unit_chunks(int32_t chunks);
 
 /// Kernel for the CST triangles (elastic and viscous): Auto = the AVX-512 kernel when the CPU has
 /// it (element/cst_simd.cpp), else the AVX2 kernel when it has AVX2 (the same file), else the

@@ -3,10 +3,15 @@
 #include "element/cst.hpp"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <random>
+#include <vector>
 
+#include "fdem/simulate.hpp"
 #include "material/hyperelastic.hpp"
 #include "support/scenes.hpp"
 
@@ -148,6 +153,106 @@ TEST(Cst, CriticalTimeStepIsAltitudeOverWaveSpeed) {
     finalize_model(m);
     // smallest altitude of a right isosceles triangle with legs 1 is 1/sqrt(2); c_p = 1000 m/s
     EXPECT_NEAR(element_critical_dt(m, 0), (1 / std::sqrt(2.0)) / 1000.0, 1e-15);
+}
+
+// ---- the element schedule's units (build_element_schedule, docs/performance.md "Stop 50") ----
+
+TEST(ElementSchedule, UnitsGrowWithTheModelUpTo16Chunks) {
+    // the largest power of two <= 16 that leaves >= 256 units
+    EXPECT_EQ(element_unit_chunks(0), 1);
+    EXPECT_EQ(element_unit_chunks(64), 1);  // 16 k triangles: one chunk per unit, as before
+    EXPECT_EQ(element_unit_chunks(511), 1);
+    EXPECT_EQ(element_unit_chunks(512), 2);  // 131 k triangles
+    EXPECT_EQ(element_unit_chunks(1024), 4);
+    EXPECT_EQ(element_unit_chunks(2047), 4);
+    EXPECT_EQ(element_unit_chunks(2048), 8);
+    EXPECT_EQ(element_unit_chunks(4096), 16);  // 10^6 triangles
+    EXPECT_EQ(element_unit_chunks(1 << 20), 16);
+}
+
+// 262 144 triangles (1 024 chunks, units of 4) with displaced nodes and velocities
+Model big_block(bool viscous) {
+    scenes::BlockOptions o;
+    o.num_tris = 1 << 18;
+    o.viscosity = viscous ? 50.0 : 0.0;
+    return scenes::make_block(o);
+}
+
+State displaced(const Model& m) {
+    State s = make_state(m, 1e-6);
+    for (size_t i = 0; i < s.x.size(); ++i) {
+        s.x[i] += 1e-4 * Vec2{std::sin(1.7 * i), std::cos(2.3 * i)};
+        s.v[i] = Vec2{std::cos(0.9 * i), std::sin(1.1 * i)};
+    }
+    std::fill(s.f.begin(), s.f.end(), Vec2{});
+    return s;
+}
+
+TEST(ElementSchedule, UnitsOfAColorShareNoNodeAndRunConsecutiveChunks) {
+    const Model m = big_block(false);
+    const ElementSchedule& sc = m.element_schedule;
+    const int32_t nc = sc.num_chunks();
+    ASSERT_EQ(nc, 1024);
+    const int32_t per = element_unit_chunks(nc);
+    ASSERT_EQ(per, 4);
+    const size_t nu = sc.unit_begin.size() - 1;
+    EXPECT_EQ(nu, 256u);
+    ASSERT_EQ(sc.unit_begin.front(), 0);
+    ASSERT_EQ(sc.unit_begin.back(), nc);
+    ASSERT_EQ(sc.color_units.front(), 0);
+    ASSERT_EQ(static_cast<size_t>(sc.color_units.back()), nu);
+    ASSERT_EQ(sc.color_begin.size(), sc.color_units.size());
+    std::vector<int> tri_seen(static_cast<size_t>(m.num_tris()), 0);
+    for (size_t c = 0; c + 1 < sc.color_units.size(); ++c) {
+        EXPECT_EQ(sc.color_begin[c], sc.unit_begin[static_cast<size_t>(sc.color_units[c])]);
+        std::vector<int> node_unit(static_cast<size_t>(m.num_nodes()), -1);
+        TriId last_unit_start = -1;
+        for (int32_t u = sc.color_units[c]; u < sc.color_units[c + 1]; ++u) {
+            const int32_t k0 = sc.unit_begin[static_cast<size_t>(u)];
+            const int32_t k1 = sc.unit_begin[static_cast<size_t>(u) + 1];
+            ASSERT_GE(k1 - k0, 1);
+            ASSERT_LE(k1 - k0, per);
+            // units of a color in triangle order; a unit's chunks follow each other in ids
+            EXPECT_GT(sc.chunk_tris[k0][0], last_unit_start);
+            last_unit_start = sc.chunk_tris[k0][0];
+            for (int32_t k = k0; k < k1; ++k) {
+                if (k > k0) EXPECT_EQ(sc.chunk_tris[k][0], sc.chunk_tris[k - 1][1]);
+                for (TriId t = sc.chunk_tris[k][0]; t < sc.chunk_tris[k][1]; ++t) {
+                    ++tri_seen[static_cast<size_t>(t)];
+                    for (NodeId n : m.tri_nodes[t]) {
+                        int& owner = node_unit[static_cast<size_t>(n)];
+                        EXPECT_TRUE(owner == -1 || owner == u)
+                            << "node " << n << " in units " << owner << " and " << u << " of color "
+                            << c;
+                        owner = u;
+                    }
+                }
+            }
+        }
+    }
+    for (int seen : tri_seen)
+        ASSERT_EQ(seen, 1);  // every triangle in exactly one chunk
+}
+
+// The pass adds each node's forces in schedule order (color, chunk, triangle) on any thread
+// count: the reference runs the chunks one after the other in that order on one thread.
+TEST(ElementSchedule, PassOfUnitsIsTheScheduleOrderOnAnyThreadCount) {
+    for (const bool viscous : {false, true}) {
+        const Model m = big_block(viscous);
+        ASSERT_GT(element_unit_chunks(m.element_schedule.num_chunks()), 1);
+        const State s0 = displaced(m);
+        std::vector<Vec2> ref(s0.f.size(), Vec2{});
+        for (const auto& [b, e] : m.element_schedule.chunk_tris)
+            add_internal_forces(m, s0.x.data(), s0.v.data(), ref.data(), b, e);
+        for (const int threads : {1, 2, 3}) {
+            omp_set_num_threads(threads);
+            State s = s0;
+            add_internal_forces(m, s);
+            EXPECT_EQ(std::memcmp(s.f.data(), ref.data(), ref.size() * sizeof(Vec2)), 0)
+                << threads << " threads, viscous " << viscous;
+        }
+    }
+    omp_set_num_threads(omp_get_num_procs());
 }
 
 }  // namespace

@@ -127,6 +127,27 @@ TEST(ElementSubset, CompositeAndSmallBodies) {
     check_partition(m, owner, 3, false);
 }
 
+// A model whose element schedule groups several chunks per unit (262 144 triangles: units of
+// 4 chunks): each subset keeps the schedule's units, so owned forces stay the serial bits.
+TEST(ElementSubset, UnitsOfSeveralChunks) {
+    scenes::BlockOptions o;
+    o.num_tris = 1 << 18;
+    o.viscosity = 50.0;
+    const Model m = scenes::make_block(o);
+    ASSERT_GT(element_unit_chunks(m.element_schedule.num_chunks()), 1);
+    const size_t nn = static_cast<size_t>(m.num_nodes());
+    for (int procs : {2, 3}) {
+        std::vector<int32_t> strips(nn), random(nn);
+        std::mt19937 rng(static_cast<unsigned>(procs) + 17);
+        for (size_t n = 0; n < nn; ++n) {
+            strips[n] = std::min(procs - 1, static_cast<int>(m.node_x0[n].x * procs));
+            random[n] = static_cast<int32_t>(rng() % static_cast<unsigned>(procs));
+        }
+        check_partition(m, strips, procs);
+        check_partition(m, random, procs, false);
+    }
+}
+
 // A subset pass gives the same bits on 1 and 2 threads (its own OpenMP schedule).
 TEST(ElementSubset, SameBitsForOneAndTwoThreads) {
     const Model m = viscous_block();
