@@ -130,7 +130,8 @@ struct MassDamping {
 /// fixed order (color, chunk, triangle) whatever the thread count.
 struct ElementSchedule {
     /// [begin, end) per chunk, sorted by (color of its unit, chunk): a unit's chunks are
-    /// consecutive here and in triangle ids
+    /// consecutive here and ascending in triangle ids (contiguous unless a fixed body, which has
+    /// no chunk, lies between two of them)
     std::vector<std::array<TriId, 2>> chunk_tris;
     std::vector<BodyId> chunk_body;    ///< (first) body of each chunk
     std::vector<int32_t> color_begin;  ///< chunks of color c: [color_begin[c], color_begin[c+1])
