@@ -106,6 +106,9 @@ mpi_same_as_serial(ghosts_far_body ${mpi_dir}/ghosts_far_body.toml ghosts_far_bo
 # Ghosts (spec D6): a kick, a follower pressure and a support reaction, whose nodes each
 # process reads beyond its own
 mpi_same_as_serial(kick_load_support ${mpi_dir}/kick_load.toml kick_load "2 3 4")
+# A model of ~165 000 triangles, whose element schedule has units of 2 chunks (docs/performance.md
+# "Stop 50"): the processes' element subsets keep the units, the run stays the serial bits
+mpi_same_as_serial(units_of_chunks ${mpi_dir}/units_block.toml units_of_chunks "2 3")
 # T3: the result does not depend on the partition: a random owner per node group (4 processes)
 # and contiguous node ids (3) instead of Zoltan's RCB
 foreach(part "random:4" "ids:3")
