@@ -133,8 +133,7 @@ struct ElementSchedule {
     /// consecutive here and ascending in triangle ids (contiguous unless a fixed body, which has
     /// no chunk, lies between two of them)
     std::vector<std::array<TriId, 2>> chunk_tris;
-    std::vector<BodyId> chunk_body;    ///< (first) body of each chunk
-    std::vector<int32_t> color_begin;  ///< chunks of color c: [color_begin[c], color_begin[c+1])
+    std::vector<BodyId> chunk_body;  ///< (first) body of each chunk
     /// unit u: chunks [unit_begin[u], unit_begin[u + 1]) (one more entry than units)
     std::vector<int32_t> unit_begin;
     /// units of color c: [color_units[c], color_units[c + 1]) (one more entry than colors)

@@ -1,6 +1,7 @@
 // Bitwise state hash for determinism checks (tests and bench_step), like Box2D's EXPECTED_HASH.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -34,6 +35,19 @@ inline uint64_t state_hash(const State& s) {
 /// The bits of r: EXPECT_EQ(bits(a), bits(b)) compares doubles exactly (also -0 and NaN payloads).
 inline uint64_t bits(Real r) {
     return std::bit_cast<uint64_t>(r);
+}
+
+/// A state of m away from the reference, for element-pass comparisons: every node moved by up to
+/// `amplitude` [m] (deterministic, so every triangle is strained), a velocity of order 1 m/s at
+/// every node (viscous stresses) and f zeroed; dt = 1e-6 s.
+inline State strained_state(const Model& m, Real amplitude) {
+    State s = make_state(m, 1e-6);
+    for (size_t i = 0; i < s.x.size(); ++i) {
+        s.x[i] += amplitude * Vec2{std::sin(1.7 * i), std::cos(2.3 * i)};
+        s.v[i] = Vec2{std::cos(0.9 * i), std::sin(1.1 * i)};
+    }
+    std::fill(s.f.begin(), s.f.end(), Vec2{});
+    return s;
 }
 
 /// `steps` steps of m from its initial state with every node moved by up to `strain`

@@ -356,7 +356,6 @@ ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_ow
     const ElementSchedule& sc = m.element_schedule;
     const int32_t ncolors = static_cast<int32_t>(sc.color_units.size()) - 1;
     ElementSubset out;
-    out.color_begin.push_back(0);
     out.color_units.push_back(0);
     out.unit_begin.push_back(0);
     out.run_begin.push_back(0);
@@ -391,7 +390,6 @@ ElementSubset element_subset(const Model& m, const std::vector<int32_t>& node_ow
             if (static_cast<int32_t>(out.chunks.size()) > out.unit_begin.back())
                 out.unit_begin.push_back(static_cast<int32_t>(out.chunks.size()));
         }
-        out.color_begin.push_back(static_cast<int32_t>(out.chunks.size()));
         out.color_units.push_back(static_cast<int32_t>(out.unit_begin.size()) - 1);
     }
     return out;
@@ -539,12 +537,9 @@ ElementSchedule build_element_schedule(const Model& m) {
     for (int32_t c = 0; c < ncolors; ++c)
         sc.color_units[c + 1] += sc.color_units[c];
     std::vector<int32_t> next(sc.color_units.begin(), sc.color_units.end() - 1);
-    std::vector<int32_t> unit_slot(n_units);
-    for (size_t u = 0; u < n_units; ++u)
-        unit_slot[u] = next[static_cast<size_t>(color[u])]++;
     std::vector<size_t> unit_at(n_units);  // the unit in schedule position p
     for (size_t u = 0; u < n_units; ++u)
-        unit_at[static_cast<size_t>(unit_slot[u])] = u;
+        unit_at[static_cast<size_t>(next[static_cast<size_t>(color[u])]++)] = u;
     sc.chunk_tris.reserve(n_chunks);
     sc.chunk_body.reserve(n_chunks);
     sc.unit_begin.push_back(0);
@@ -556,9 +551,6 @@ ElementSchedule build_element_schedule(const Model& m) {
         }
         sc.unit_begin.push_back(static_cast<int32_t>(sc.chunk_tris.size()));
     }
-    sc.color_begin.resize(sc.color_units.size());
-    for (size_t c = 0; c < sc.color_units.size(); ++c)
-        sc.color_begin[c] = sc.unit_begin[static_cast<size_t>(sc.color_units[c])];
 
     // first writers (first_internal_forces): chunks of CST triangles each of whose nodes is used
     // by that triangle alone (over every triangle of the model, fixed bodies' included); the

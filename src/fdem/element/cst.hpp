@@ -57,8 +57,7 @@ ElementPass first_internal_forces(const Model& m, State& s);
 /// pressure couples its sub-triangles). The smallest det F is taken over every triangle a
 /// process runs (each triangle is run by the owners of its nodes), keyed by (chunk, triangle).
 struct ElementSubset {
-    std::vector<int32_t> chunks;       ///< schedule chunk ids, ascending
-    std::vector<int32_t> color_begin;  ///< chunks of color c: [color_begin[c], color_begin[c+1])
+    std::vector<int32_t> chunks;  ///< schedule chunk ids, ascending
     /// the entries of chunks by unit of the schedule (ElementSchedule::unit_begin): unit u of the
     /// subset is entries [unit_begin[u], unit_begin[u + 1]), its units of color c
     /// [color_units[c], color_units[c + 1])

@@ -13,6 +13,7 @@
 #include "element/cst.hpp"
 #include "fdem/build.hpp"
 #include "fdem/simulate.hpp"
+#include "support/hash.hpp"
 #include "support/scenes.hpp"
 
 namespace fdem {
@@ -25,13 +26,7 @@ uint64_t bits(double x) {
 // a state away from the reference: displaced nodes (every triangle strained) and velocities
 // (viscous stresses)
 State strained_state(const Model& m) {
-    State s = make_state(m, 1e-6);
-    for (size_t i = 0; i < s.x.size(); ++i) {
-        s.x[i] += 1e-3 * Vec2{std::sin(1.7 * i), std::cos(2.3 * i)};
-        s.v[i] = Vec2{std::cos(0.9 * i), std::sin(1.1 * i)};
-    }
-    std::fill(s.f.begin(), s.f.end(), Vec2{});
-    return s;
+    return scenes::strained_state(m, 1e-3);
 }
 
 // sums = false: a step without energies (need_energy false, no viscous power read): the chunks

@@ -20,7 +20,7 @@ TEST(SmallBodyChunks, PackOfTwoTriangleBlocksUsesFullChunks) {
     // 256 triangles = 128 blocks per chunk: ceil(20000 / 256) = 79 chunks (was 10^4)
     EXPECT_EQ(m.element_schedule.num_chunks(), 79);
     // chunks of one color share no node: here every chunk has its own bodies, so one color
-    EXPECT_EQ(m.element_schedule.color_begin.size(), 2u);
+    EXPECT_EQ(m.element_schedule.color_units.size(), 2u);
 }
 
 TEST(SmallBodyChunks, ParallelForcesEqualTheSerialLoopBitwise) {
