@@ -182,6 +182,15 @@ add_test(NAME mpi.scaling_script
                  --mpiexec ${MPIEXEC_EXECUTABLE})
 set_tests_properties(mpi.scaling_script PROPERTIES LABELS mpi TIMEOUT 120 PROCESSORS 2
     PASS_REGULAR_EXPRESSION "block: 242 / 484 triangles, 20 steps at dt [^:]+: strong speed-up median [0-9.]+x \\([0-9.-]+\\), weak efficiency median [0-9.]+ \\([0-9.-]+\\) over 1 round\\(s\\)\npack: 32 / 64 triangles, 20 steps")
+# --split: the P*N scene on 1 process too, and the weak efficiency as the product of the size
+# factor and the parallel efficiency at P*N (check_scaling_split.py recomputes both from
+# scaling.csv and checks the printed figures and the product)
+add_test(NAME mpi.scaling_script.split
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/scaling_split.sh ${PROJECT_SOURCE_DIR}/scripts/scaling
+                 $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE} ${mpi_out}/scaling_split)
+set_tests_properties(mpi.scaling_script.split PROPERTIES LABELS mpi TIMEOUT 120 PROCESSORS 2
+                     PASS_REGULAR_EXPRESSION "OK: scaling split")
 # D13: [output] merge = true: process 0 writes the serial .vtu frames instead of .pvtu pieces
 mpi_same_as_serial(merged_frames ${mpi_dir}/merged.toml merged "3")
 # Example 12 (issue #15 "Done when"): the example's own run script (make_raster.py, the generated
