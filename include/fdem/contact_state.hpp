@@ -114,6 +114,24 @@ struct alignas(64) ContactApplyPart {
     Real lost_depth_ratio = 0;
 };
 
+/// The apply of the pairs in contact with T >= 2 threads (add_contact_forces() step 3b): thread
+/// u adds the forces of the real nodes [N u / T, N (u + 1) / T). Its share of the bookkeeping is
+/// two segments of the candidates: those whose target lies in that range, and the edge targets
+/// whose edge starts there (the candidates ascend by target, edge targets last), so most pairs
+/// add their forces in the bookkeeping's own loop; a pair whose force span leaves its thread's
+/// range is added by every other range it meets from that range's foreign list, walked in pair
+/// order around the thread's own segments: every node receives its forces in pair order. A
+/// function of the candidates and T, built by the first apply after a broad phase. Scratch, not
+/// saved: threads = 0 (not built) wherever the candidates are written.
+struct ContactApplyLists {
+    int32_t threads = 0;                 ///< T the lists were built for; 0: not built
+    std::vector<int32_t> first;          ///< 2 T + 1: the first candidate of each segment, then all
+    std::vector<uint8_t> inside;         ///< per candidate: its forces stay in its thread's range
+    std::vector<int32_t> foreign_begin;  ///< T + 1: range u's foreign list, CSR
+    std::vector<int32_t> foreign;        ///< candidates (ascending per range)
+    std::vector<int32_t> fill;           ///< T: the build's fill positions
+};
+
 struct ContactState {
     int32_t active_contacts = 0;  ///< pairs in contact after the last step
 
@@ -145,10 +163,8 @@ struct ContactState {
     std::vector<PairResult> pair_out;  ///< as in_contact, scratch (see PairResult)
     /// scratch of the apply with 2+ threads: per thread, its share of the bookkeeping
     std::vector<ContactApplyPart> apply_part;
-    /// scratch of the apply with T >= 2 threads: thread s's list, for each thread t, of the
-    /// pairs of its slice whose forces reach t's node range (segment s T + t: a count, then the
-    /// pairs' indices k in place order; ~k where the pair also reaches another range)
-    std::vector<int32_t> apply_to;
+    /// scratch of the apply with T >= 2 threads: the slices and foreign lists of the candidates
+    ContactApplyLists apply_lists;
     /// energy continuity through a rebuild of the contact topology (theory eq. 9.26): written
     /// by rebuild_contact_topology() (probe of the old topology at x^n, sorted by (node, body)),
     /// read and cleared by the next add_contact_forces() of the same step; never saved
@@ -158,8 +174,8 @@ struct ContactState {
     std::vector<BodyBox> body_box;  ///< per body, scratch of add_contact_forces()
     /// the contactor bodies of cand, ascending: the only boxes the narrow phase reads, so only
     /// theirs are computed (one-process runs; a distributed run lists its own pairs' in
-    /// ContactShare::box_bodies). Scratch, not saved: box_list_valid is cleared wherever cand
-    /// is written (broad phase, checkpoint read, gather_candidates())
+    /// ContactShare::box_bodies). Scratch, not saved: box_list_valid (and apply_lists.threads)
+    /// is cleared wherever cand is written (broad phase, checkpoint read, gather_candidates())
     std::vector<BodyId> box_bodies;
     std::vector<uint8_t> box_mark;  ///< per body, scratch of the list
     bool box_list_valid = false;

@@ -46,6 +46,11 @@ constexpr Real kRejectMargin = 1e-9;
 constexpr int32_t kMinParallelPairs = 2048;
 // below this many pairs in contact the apply (step 3b) runs on one thread
 constexpr int32_t kMinParallelApply = 4096;
+// which forces the apply's bookkeeping adds (contact_forces_impl() step 3b)
+constexpr int kNoForces = 0, kAllForces = 1, kSliceForces = 2;
+using NoForces = std::integral_constant<int, kNoForces>;
+using AllForces = std::integral_constant<int, kAllForces>;
+using SliceForces = std::integral_constant<int, kSliceForces>;
 // the narrow phase splits the pairs into this many fixed chunks (independent of the thread
 // count); each chunk lists its pairs in contact at the front of its range of cs.in_contact
 constexpr int32_t kPairChunks = 64;
@@ -368,6 +373,7 @@ void init_contact_state(const Model& m, State& s) {
     cs.box_bodies.reserve(static_cast<size_t>(m.num_bodies()));
     cs.box_mark.assign(static_cast<size_t>(m.num_bodies()), 0);
     cs.box_list_valid = false;
+    cs.apply_lists.threads = 0;
     cs.broad.tri_center.reserve(nt);
     cs.broad.tri_radius.reserve(nt);
     cs.broad.tri_cell.reserve(nt);
@@ -1012,6 +1018,7 @@ void probe_law_depths(const Model& m, State& s, std::span<const BodyId> dirty) {
         const Vec2* xc = ct.welded() ? cs.xw.data() : x;
         find_candidates(m, ct, x, xc, cs.xv.data(), cs.cand, cs.broad);
         cs.box_list_valid = false;
+        cs.apply_lists.threads = 0;
         fill_contact_positions(ct, cs, xc, nullptr, 0);  // (every contact node: a break step)
         const int32_t npairs = static_cast<int32_t>(cs.cand.node.size());
         PairResult out;
@@ -1425,6 +1432,76 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
     }
 }
 
+// The segments and foreign lists of the apply with T threads (ContactApplyLists) for the
+// candidates cand. The candidates ascend by target, real nodes first, then edge targets. Segment
+// u < T holds the candidates whose real target lies in node range u, [N u / T, N (u + 1) / T);
+// segment T + u the edge targets whose edge's smaller node (its running maximum: the segments
+// must be runs) lies in range u. Thread u runs segments u and T + u. A candidate whose force
+// span (pair_span()) leaves its thread's range is on the foreign list of every other range the
+// span meets, in ascending order. Serial; run by the first apply with T threads after the
+// candidates changed.
+void build_apply_lists(const Model& m, const ContactTopology& ct, const Candidates& cand, int T,
+                       ContactApplyLists& L) {
+    const int32_t np = static_cast<int32_t>(cand.node.size());
+    const NodeId nr = ct.num_real_nodes;
+    const int64_t nn = nr;
+    const auto range_lo = [nn, T](int u) { return static_cast<NodeId>(nn * u / T); };
+    const auto range_of = [&](NodeId i) {  // the range holding real node i
+        int u = static_cast<int>(static_cast<int64_t>(i) * T / std::max<int64_t>(nn, 1));
+        u = std::clamp(u, 0, T - 1);
+        while (u + 1 < T && range_lo(u + 1) <= i)
+            ++u;
+        while (u > 0 && range_lo(u) > i)
+            --u;
+        return u;
+    };
+    const size_t ts = static_cast<size_t>(T);
+    L.first.assign(2 * ts + 1, np);
+    L.inside.resize(static_cast<size_t>(np));
+    L.foreign_begin.assign(ts + 1, 0);
+    int last = -1;       // the segment of the previous candidate
+    NodeId edge_at = 0;  // the running maximum of the edge targets' smaller nodes
+    const auto segment = [&](NodeId j) {
+        if (j < nr) return range_of(j);
+        const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
+        edge_at = std::max(edge_at, std::min(e[0], e[1]));
+        return T + range_of(edge_at);
+    };
+    for (int32_t pr = 0; pr < np; ++pr) {
+        const NodeId j = cand.node[static_cast<size_t>(pr)];
+        const int sg = segment(j);
+        FDEM_ASSERT(sg >= last, "the apply's segments are not runs of the candidates");
+        while (last < sg)
+            L.first[static_cast<size_t>(++last)] = pr;
+        const int own = sg % T;
+        NodeId a, b;
+        pair_span(m, ct, j, cand.body[static_cast<size_t>(pr)], a, b);
+        const int ua = range_of(a), ub = range_of(b);
+        L.inside[static_cast<size_t>(pr)] = ua == own && ub == own ? 1 : 0;
+        for (int u = ua; u <= ub; ++u)
+            L.foreign_begin[static_cast<size_t>(u) + 1] += u != own ? 1 : 0;
+    }
+    for (size_t u = 0; u < ts; ++u)
+        L.foreign_begin[u + 1] += L.foreign_begin[u];
+    L.foreign.resize(static_cast<size_t>(L.foreign_begin[ts]));
+    std::vector<int32_t>& at = L.fill;
+    at.assign(L.foreign_begin.begin(), L.foreign_begin.end() - 1);
+    int sg = 0;  // the segment of candidate pr
+    for (int32_t pr = 0; pr < np; ++pr) {
+        while (L.first[static_cast<size_t>(sg) + 1] <= pr)
+            ++sg;
+        if (L.inside[static_cast<size_t>(pr)]) continue;
+        const int own = sg % T;
+        NodeId a, b;
+        pair_span(m, ct, cand.node[static_cast<size_t>(pr)], cand.body[static_cast<size_t>(pr)], a,
+                  b);
+        for (int u = range_of(a); u <= range_of(b); ++u) {
+            if (u != own) L.foreign[static_cast<size_t>(at[static_cast<size_t>(u)]++)] = pr;
+        }
+    }
+    L.threads = T;
+}
+
 // add_contact_forces() with plan == nullptr; else as one process of a distributed run
 void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const Comm* comm) {
     const ContactShare* share = plan != nullptr ? &plan->contact : nullptr;
@@ -1501,6 +1578,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             find_candidates(m, ct, x, xc, xv, cs.cand, cs.broad);
         }
         cs.box_list_valid = false;
+        cs.apply_lists.threads = 0;
         if (share != nullptr) {
             share->boxes_valid = false;
             share->dest_valid = false;
@@ -1621,13 +1699,14 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     //     order, so f and f_contact are those of a serial loop; the energies are exact sums
     //     (theory §4.4), the diagnostics counts and maxima, so any split of the bookkeeping
     //     gives the same bits. One thread: one loop does both. T >= 2 threads (at least
-    //     kMinParallelApply pairs in contact): thread t first does the bookkeeping of the places
-    //     [n_next t / T, n_next (t + 1) / T) (with the old entries between their keys) and
-    //     lists, for each thread u, the pairs of its slice whose node span (pair_span(): the
-    //     target and the contactor body's nodes) meets u's range of real nodes
-    //     [N u / T, N (u + 1) / T) (ContactState::apply_to); then, after a barrier, adds the
-    //     forces of the pairs listed for it by threads 0, 1, .., T - 1 (so in pair order) to
-    //     its own range only.
+    //     kMinParallelApply pairs in contact): thread t owns the real nodes [N t / T,
+    //     N (t + 1) / T) and does the bookkeeping of two segments of the pairs: those whose
+    //     target lies there and the edge targets whose edge starts there (ContactApplyLists,
+    //     built once per broad phase). It adds their forces in the same loop (to its own nodes
+    //     only where a pair's node span, pair_span(), leaves the range), and the forces on its
+    //     nodes of the other threads' pairs that reach them (the range's foreign list) before,
+    //     between and after its segments in pair order: every node gets its forces in pair
+    //     order, no barrier.
     int32_t span_pos[kPairChunks + 1];  // the place of each span's first pair
     span_pos[0] = 0;
     for (int32_t sp = 0; sp < kPairChunks; ++sp)
@@ -1709,13 +1788,15 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         return at;
     };
     // the bookkeeping of the places [p0, p1) and of the old entries [ia, ia_end) (those below
-    // the pair at p1); with_forces: the forces too (one thread)
+    // the pair at p1); forces: none (kNoForces), every pair's (kAllForces, one thread), or those
+    // of the nodes [lo, hi) (kSliceForces: whole where the candidate's forces stay in the range,
+    // inside[pr], else node by node)
     // (captures by value: the force stores could alias anything captured by reference, which
     // the compiler would then reload after each of them)
     auto bookkeeping = [act, next, out, in_contact, key_node, key_body, f, fc, deep_limit, energy,
-                        &ct, &release, &span_pos,
-                        &span_begin](int32_t p0, int32_t p1, size_t ia, size_t ia_end,
-                                     ContactApplyPart& part, auto with_forces) {
+                        &ct, &release, &span_pos, &span_begin](
+                           int32_t p0, int32_t p1, size_t ia, size_t ia_end, ContactApplyPart& part,
+                           auto forces, NodeId lo, NodeId hi, const uint8_t* inside) {
         ExactSum stored, dissipated;
         Real max_ratio = 0;
         int64_t deep = 0;
@@ -1746,8 +1827,21 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                     release(act[ia++], part, dissipated);
                 ia = h + 1;
             }
-            if constexpr (decltype(with_forces)::value)
+            if constexpr (decltype(forces)::value == kAllForces) {
                 add_pair_forces(ct, f, fc, j, o);  // f on the target, -N_i f on the contactor
+            } else if constexpr (decltype(forces)::value == kSliceForces) {
+                if (inside[pr]) {
+                    if constexpr (kAssertsEnabled) {
+                        visit_pair_forces(ct, j, o, [lo, hi]([[maybe_unused]] NodeId i, Vec2) {
+                            FDEM_ASSERT(i >= lo && i < hi,
+                                        "a pair's force reaches beyond its thread's range");
+                        });
+                    }
+                    add_pair_forces(ct, f, fc, j, o);
+                } else {
+                    add_pair_forces(ct, f, fc, j, o, lo, hi);
+                }
+            }
             const Real ratio = o.h.depth_ratio;
             max_ratio = std::max(max_ratio, ratio);
             deep += ratio > deep_limit ? 1 : 0;
@@ -1757,36 +1851,30 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         }
         while (ia < ia_end)
             release(act[ia++], part, dissipated);
-        part.stored = stored;
-        part.dissipated = dissipated;
-        part.max_depth_ratio = max_ratio;
-        part.deep = deep;
+        part.stored.add(stored);  // (exact: a part may take several runs)
+        part.dissipated.add(dissipated);
+        part.max_depth_ratio = std::max(part.max_depth_ratio, max_ratio);
+        part.deep += deep;
     };
     const int max_threads = omp_get_max_threads();
-    if (cs.apply_part.size() < static_cast<size_t>(max_threads))
-        cs.apply_part.resize(static_cast<size_t>(max_threads));
+    // (two parts per thread: the segments of ContactApplyLists)
+    if (cs.apply_part.size() < 2 * static_cast<size_t>(max_threads))
+        cs.apply_part.resize(2 * static_cast<size_t>(max_threads));
     ContactApplyPart* parts = cs.apply_part.data();
     int nparts = 1;
     const bool par_apply = max_threads > 1 && n_next >= kMinParallelApply;
     // (a distributed run: the bookkeeping of its own pairs here, their forces with the other
     // processes' records in apply_records())
     const bool local = share != nullptr;
-    // the lists of apply_to, for T threads: T^2 segments of a count and at most a slice's pairs
-    // (T (n_next + 2 T) entries at most; grows only)
-    const auto seg_len = [n_next](int nt) { return static_cast<size_t>(n_next / nt) + 2; };
-    if (par_apply && !local) {
-        const size_t mt = static_cast<size_t>(max_threads);
-        const size_t need = mt * (static_cast<size_t>(n_next) + 2 * mt);
-        if (cs.apply_to.size() < need) cs.apply_to.resize(need);
-    }
     if (!par_apply) {
         parts[0] = ContactApplyPart{};
         if (local) {
-            bookkeeping(0, n_next, 0, n_act, parts[0], std::false_type{});
+            bookkeeping(0, n_next, 0, n_act, parts[0], NoForces{}, 0, 0, nullptr);
         } else {
-            bookkeeping(0, n_next, 0, n_act, parts[0], std::true_type{});
+            bookkeeping(0, n_next, 0, n_act, parts[0], AllForces{}, 0, 0, nullptr);
         }
-    } else {
+    } else if (local) {
+        // (a distributed run: the bookkeeping by places; the forces in apply_records())
 #pragma omp parallel
         {
             const int nt = omp_get_num_threads(), t = omp_get_thread_num();
@@ -1797,75 +1885,71 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                 return static_cast<int32_t>(static_cast<int64_t>(n_next) * r / nt);
             };
             const int32_t p0 = slice(t), p1 = slice(t + 1);
-            bookkeeping(p0, p1, t == 0 ? 0 : old_from(p0), old_from(p1), part, std::false_type{});
-            if (!local) {
-                // thread u's range of real nodes starts at range_lo(u)
-                const int64_t nn = ct.num_real_nodes;
-                const auto range_lo = [nn, nt](int u) { return static_cast<NodeId>(nn * u / nt); };
-                // the range holding real node i (a scan of the starts for up to 64 threads)
-                constexpr int kScan = 64;
-                std::array<NodeId, kScan + 1> starts;
-                if (nt <= kScan) {
-                    for (int u = 0; u <= nt; ++u)
-                        starts[static_cast<size_t>(u)] = range_lo(u);
-                }
-                const auto range_of = [&](NodeId i) {
-                    int u = 0;
-                    if (nt <= kScan) {
-                        while (starts[static_cast<size_t>(u + 1)] <= i)
-                            ++u;
-                        return u;
-                    }
-                    u = static_cast<int>(static_cast<int64_t>(i) * nt / nn);
-                    while (u + 1 < nt && range_lo(u + 1) <= i)
-                        ++u;
-                    while (u > 0 && range_lo(u) > i)
-                        --u;
-                    return u;
-                };
-                // this slice's pairs listed by the ranges their spans meet, in place order
-                const size_t len = seg_len(nt);
-                int32_t* const to = cs.apply_to.data() + static_cast<size_t>(t) * nt * len;
-                for (int u = 0; u < nt; ++u)
-                    to[static_cast<size_t>(u) * len] = 0;
-                for_places(p0, p1, [&](int32_t, int32_t k) {
-                    const int32_t pr = in_contact[k];
-                    const NodeId j = key_node[pr];
-                    NodeId a, b;
-                    pair_span(m, ct, j, key_body[pr], a, b);
-                    if constexpr (kAssertsEnabled) {
-                        visit_pair_forces(ct, j, out[k], [a, b]([[maybe_unused]] NodeId i, Vec2) {
-                            FDEM_ASSERT(i >= a && i <= b, "a pair's force reaches beyond its span");
-                        });
-                    }
-                    const int ua = range_of(a), ub = range_of(b);
-                    // k: the whole span in one range (no per-node check); ~k: checked
-                    const int32_t e = ua == ub ? k : ~k;
-                    for (int u = ua; u <= ub; ++u) {
-                        int32_t* seg = to + static_cast<size_t>(u) * len;
-                        seg[1 + seg[0]++] = e;
-                    }
-                });
-#pragma omp barrier
-                // the forces, to this thread's real nodes only, in pair order (the lists of
-                // threads 0 .. T - 1 for this range, each in place order)
-                const NodeId lo = range_lo(t);
-                const NodeId hi = static_cast<NodeId>(nn * (t + 1) / nt);
-                for (int r = 0; r < nt; ++r) {
-                    const int32_t* seg =
-                        cs.apply_to.data() + (static_cast<size_t>(r) * nt + t) * len;
-                    const int32_t cnt = seg[0];
-                    for (int32_t q = 1; q <= cnt; ++q) {
-                        const int32_t e = seg[q];
-                        if (e >= 0) {
-                            add_pair_forces(ct, f, fc, key_node[in_contact[e]], out[e]);
-                        } else {
-                            const int32_t k = ~e;
-                            add_pair_forces(ct, f, fc, key_node[in_contact[k]], out[k], lo, hi);
-                        }
-                    }
-                }
+            bookkeeping(p0, p1, t == 0 ? 0 : old_from(p0), old_from(p1), part, NoForces{}, 0, 0,
+                        nullptr);
+        }
+    } else {
+        // thread t: the pairs of its two segments (ContactApplyLists), their bookkeeping and
+        // forces in one loop each, the forces of the foreign pairs on its nodes before, between
+        // and after them in pair order, all to its own node range: no barrier. Segment s
+        // books into parts[s], so the parts combine in pair order
+        ContactApplyLists& L = cs.apply_lists;
+        const int built = L.threads;  // (read before the region: the same test on every thread)
+        const int64_t nn = ct.num_real_nodes;
+        // the narrow phase's chunk of candidate pr < npairs, and where pr is or would be in its
+        // ascending list of pairs in contact (in_contact)
+        const auto locate = [&](int32_t pr, int32_t& ch) {
+            ch = static_cast<int32_t>(static_cast<int64_t>(pr) * kPairChunks / npairs);
+            while (ch + 1 < kPairChunks && chunk_begin(ch + 1) <= pr)
+                ++ch;
+            while (ch > 0 && chunk_begin(ch) > pr)
+                --ch;
+            const int32_t* b = in_contact + chunk_begin(ch);
+            return std::lower_bound(b, b + chunk_count[ch], pr);
+        };
+        // the place of the first pair in contact at or after candidate pr
+        const auto place_of = [&](int32_t pr) {
+            if (pr >= npairs) return n_next;
+            int32_t ch;
+            const int32_t* it = locate(pr, ch);
+            return span_pos[ch] + static_cast<int32_t>(it - (in_contact + chunk_begin(ch)));
+        };
+#pragma omp parallel
+        {
+            const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+            if (built != nt) {
+#pragma omp single
+                build_apply_lists(m, ct, cs.cand, nt, L);
             }
+            if (t == 0) nparts = 2 * nt;
+            const NodeId lo = static_cast<NodeId>(nn * t / nt);
+            const NodeId hi = static_cast<NodeId>(nn * (t + 1) / nt);
+            const int32_t* fl = L.foreign.data();
+            int32_t q = L.foreign_begin[static_cast<size_t>(t)];
+            const int32_t qe = L.foreign_begin[static_cast<size_t>(t) + 1];
+            // the foreign pairs below candidate end that are in contact, on this range's nodes
+            // (the candidates of a chunk of the narrow phase in contact ascend in in_contact)
+            const auto foreign_below = [&](int32_t end) {
+                for (; q < qe && fl[q] < end; ++q) {
+                    const int32_t pr = fl[q];
+                    int32_t ch;
+                    const int32_t* it = locate(pr, ch);
+                    if (it == in_contact + chunk_begin(ch) + chunk_count[ch] || *it != pr)
+                        continue;  // (not in contact)
+                    add_pair_forces(ct, f, fc, key_node[pr], out[it - in_contact], lo, hi);
+                }
+            };
+            for (const int sg : {t, nt + t}) {
+                const int32_t c0 = L.first[static_cast<size_t>(sg)];
+                const int32_t c1 = L.first[static_cast<size_t>(sg) + 1];
+                foreign_below(c0);
+                ContactApplyPart& part = parts[sg];
+                part = ContactApplyPart{};
+                const int32_t p0 = place_of(c0), p1 = place_of(c1);
+                bookkeeping(p0, p1, sg == 0 ? 0 : old_from(p0), old_from(p1), part, SliceForces{},
+                            lo, hi, L.inside.data());
+            }
+            foreign_below(npairs);
         }
     }
     if (!local) {
@@ -2105,6 +2189,7 @@ void set_force_readers(StepPlan& plan, std::span<const std::vector<NodeId>> cont
 void gather_candidates(State& s, const StepPlan& plan, const Comm& comm) {
     Candidates& cand = s.contact.cand;
     s.contact.box_list_valid = false;
+    s.contact.apply_lists.threads = 0;
     const ContactTopology& ct = s.topology;
     // the pairs of my targets only (after a first gather a process holds every pair), as
     // [pairs][tris][node...][body...][count per pair...][tri...] (int32 words)

@@ -1,9 +1,10 @@
 // The contact phase with 1 to 4 OpenMP threads (contact/contact.cpp): the pairs are evaluated in
-// parallel and applied in pair order (each thread adds them to its range of nodes; the energies
-// are exact sums over its share of the bookkeeping), so x, v, the forces and the contact energies
-// must be bitwise those of one thread for any thread count. The pack is large enough for the
-// parallel narrow phase (more candidate pairs than its serial threshold), is in saturated contact
-// and has edge midpoint targets; the shuffled pack numbers its bodies far apart in space.
+// parallel and applied in pair order (each thread adds them to its range of nodes, the pairs
+// whose forces cross into it from the other threads' segments around its own; the
+// energies are exact sums over its share of the bookkeeping), so x, v, the forces and the contact
+// energies must be bitwise those of one thread for any thread count. The pack is large enough for
+// the parallel narrow phase (more candidate pairs than its serial threshold), is in saturated
+// contact and has edge midpoint targets; the shuffled pack numbers its bodies far apart in space.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -21,6 +22,9 @@ struct Run {
     Real contact = 0, dissipated = 0;
     int32_t active = 0;
     size_t candidates = 0;
+    // the apply's lists (ContactApplyLists): foreign candidates before / after a range's own
+    // segment of real targets, and candidates whose forces leave their thread's range
+    size_t foreign_below = 0, foreign_above = 0, leaving = 0;
 };
 
 Run run(const Model& m, int threads, int steps) {
@@ -28,14 +32,26 @@ Run run(const Model& m, int threads, int steps) {
     State s = make_state(m, 0.5 * stable_time_step(m));
     for (int k = 0; k < steps; ++k)
         step(m, s);
-    return {s.x,
-            s.v,
-            s.f,
-            s.f_contact,
-            s.energy.contact,
-            s.energy.dissipated_contact,
-            s.contact.active_contacts,
-            s.contact.cand.node.size()};
+    Run r{s.x,
+          s.v,
+          s.f,
+          s.f_contact,
+          s.energy.contact,
+          s.energy.dissipated_contact,
+          s.contact.active_contacts,
+          s.contact.cand.node.size()};
+    const ContactApplyLists& L = s.contact.apply_lists;
+    if (L.threads == threads) {
+        for (int u = 0; u < threads; ++u) {
+            for (int32_t q = L.foreign_begin[u]; q < L.foreign_begin[u + 1]; ++q) {
+                r.foreign_below += L.foreign[q] < L.first[u] ? 1 : 0;
+                r.foreign_above += L.foreign[q] >= L.first[u + 1] ? 1 : 0;
+            }
+        }
+        for (const uint8_t in : L.inside)
+            r.leaving += in ? 0 : 1;
+    }
+    return r;
 }
 
 bool same_bits(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
@@ -53,6 +69,11 @@ void expect_thread_independent(const Model& m) {
     for (int threads : {2, 3, 4}) {
         SCOPED_TRACE(threads);
         const Run r = run(m, threads, 80);
+        // the forces of some pairs cross the threads' node ranges both ways: the foreign
+        // lists are walked before and after the threads' own segments
+        EXPECT_GT(r.leaving, 0u);
+        EXPECT_GT(r.foreign_below, 0u);
+        EXPECT_GT(r.foreign_above, 0u);
         EXPECT_TRUE(same_bits(one.x, r.x));
         EXPECT_TRUE(same_bits(one.v, r.v));
         EXPECT_TRUE(same_bits(one.f, r.f));
