@@ -1641,11 +1641,14 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         const bool boxes = cs.box_reject;
         const int32_t nbodies = m.num_bodies();
         // one parallel region: the boxes (a worksharing loop inside body_boxes(), whose
-        // implicit barrier completes them), then the pairs
+        // implicit barrier completes them), then the pairs: the chunks handed out as threads
+        // come free (each chunk's results are its own, so any thread may run any chunk; on a
+        // shared host a thread slowed for a while takes fewer chunks: the saturated pack's
+        // 2-thread step −7 % against round-robin, docs/performance.md "Stop 51")
 #pragma omp parallel if (npairs > kMinParallelPairs)
         {
             if (boxes) boxes_of(ct, xc, xv, box, nbodies, box_list, box_count);
-#pragma omp for schedule(static, 1) nowait
+#pragma omp for schedule(dynamic, 1) nowait
             for (int32_t ch = 0; ch < kPairChunks; ++ch) {
                 const int32_t b = chunk_begin(ch), e = chunk_begin(ch + 1);
                 // pass 1, branch-free: the pairs the box does not reject, in order
