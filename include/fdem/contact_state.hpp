@@ -102,9 +102,10 @@ struct LegacyTriangleState {
     std::vector<Real> couple_dissipated;
 };
 
-/// One thread's share of the apply of the pairs in contact (add_contact_forces() step 3b with
-/// 2+ threads): its slice's energies (exact sums: any split gives the same bits) and
-/// diagnostics, combined in thread order afterwards. Per-step scratch.
+/// One share of the apply of the pairs in contact (add_contact_forces() step 3b with 2+ threads:
+/// a segment of ContactApplyLists, or a thread's slice in a distributed run): its energies
+/// (exact sums: any split gives the same bits) and diagnostics, combined in pair order
+/// afterwards. Per-step scratch.
 struct alignas(64) ContactApplyPart {
     ExactSum stored, dissipated;
     Real max_depth_ratio = 0;
@@ -161,9 +162,9 @@ struct ContactState {
     std::vector<ActiveContact> active;
     std::vector<ActiveContact> active_next;
     std::vector<PairResult> pair_out;  ///< as in_contact, scratch (see PairResult)
-    /// scratch of the apply with 2+ threads: per thread, its share of the bookkeeping
+    /// scratch of the apply with 2+ threads: its shares of the bookkeeping (two per thread)
     std::vector<ContactApplyPart> apply_part;
-    /// scratch of the apply with T >= 2 threads: the slices and foreign lists of the candidates
+    /// scratch of the apply with T >= 2 threads: the segments and foreign lists of the candidates
     ContactApplyLists apply_lists;
     /// energy continuity through a rebuild of the contact topology (theory eq. 9.26): written
     /// by rebuild_contact_topology() (probe of the old topology at x^n, sorted by (node, body)),

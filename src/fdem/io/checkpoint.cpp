@@ -647,9 +647,9 @@ void read_checkpoint(const std::string& path, const Model& m, State& s, RunProgr
     r.get(c.cand.body);
     r.get(c.cand.begin);
     r.get(c.cand.tri);
-    c.box_list_valid = false;  // (scratch: the contactor list of the old candidates)
+    c.box_list_valid = false;   // (scratch: the contactor list of the old candidates)
     c.apply_lists.threads = 0;  // (scratch: the apply's lists of the old candidates)
-    c.fc_sparse = false;       // (f_contact was read: the next step clears every node)
+    c.fc_sparse = false;        // (f_contact was read: the next step clears every node)
     r.get(c.broad.tri_center);
     r.get(c.broad.tri_radius);
     r.get(c.broad.tri_cell);
