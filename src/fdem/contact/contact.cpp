@@ -47,10 +47,26 @@ constexpr int32_t kMinParallelPairs = 2048;
 // below this many pairs in contact the apply (step 3b) runs on one thread
 constexpr int32_t kMinParallelApply = 4096;
 // which forces the apply's bookkeeping adds (contact_forces_impl() step 3b)
-constexpr int kNoForces = 0, kAllForces = 1, kSliceForces = 2;
+constexpr int kNoForces = 0, kAllForces = 1, kSliceForces = 2, kDirectForces = 3;
 using NoForces = std::integral_constant<int, kNoForces>;
 using AllForces = std::integral_constant<int, kAllForces>;
 using SliceForces = std::integral_constant<int, kSliceForces>;
+using DirectForces = std::integral_constant<int, kDirectForces>;
+
+// The bookkeeping's forces in a one-thread distributed apply (kDirectForces): every own pair's
+// forces at the nodes it needs that no received record reaches (exposed[i] == 0), in pair order
+// (only own pairs reach those nodes: the serial order there); a pair that reaches an exposed
+// node is listed in deferred, for apply_merged() to add there in the merged order. Whole (one
+// add_pair_forces(), no test per node) where every node of the contactor body is needed and
+// none is exposed (body_all, exposed_body) and neither is the target.
+struct DirectAdds {
+    const uint8_t* need;          ///< ContactShare::need
+    const uint8_t* exposed;       ///< ContactShare::exposed
+    const uint8_t* exposed_body;  ///< ContactShare::exposed_body
+    const uint8_t* body_all;      ///< ContactShare::body_all
+    int32_t* deferred;            ///< out: the pairs (narrow-phase index k) left for the merge
+    int32_t n_deferred = 0;
+};
 // the narrow phase splits the pairs into this many fixed chunks (independent of the thread
 // count); each chunk lists its pairs in contact at the front of its range of cs.in_contact
 constexpr int32_t kPairChunks = 64;
@@ -1188,15 +1204,14 @@ void plan_record_exchange(const Model& m, const State& s, const StepPlan& plan, 
     sh.dest_valid = true;
 }
 
-// The forces of the pairs in contact of a distributed step: this process's own pairs (own_k[p]:
-// the narrow phase's output index of its p-th pair in pair order) go as records to the
-// processes that need a node they reach; the records received from the others are merged with
-// them in pair order ((node, body): each pair has one owner, so the keys are distinct), and the
-// forces of all of them are added to the nodes this process needs, in that order: every such
-// node receives the adds of the serial loop in its order. Collective.
-void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& plan,
-                   const Comm& comm, State& s, const int32_t* own_k, int32_t n_own,
-                   const int32_t* in_contact, const PairResult* out) {
+// The forces of the pairs in contact of a distributed step, part 1: this process's own pairs
+// (own_k[p]: the narrow phase's output index of its p-th pair in pair order) go as records to
+// the processes that need a node they reach; the records of the others arrive, in pair order per
+// source, into sh.rec_node, rec_body and rec_out (sh.records_received of them). Part 2,
+// apply_merged(), adds their forces. Collective.
+void exchange_records(const Model& m, const ContactTopology& ct, const StepPlan& plan,
+                      const Comm& comm, State& s, const int32_t* own_k, int32_t n_own,
+                      const int32_t* in_contact, const PairResult* out) {
     const ContactShare& sh = plan.contact;
     StepTiming& timing = s.timing;
     if (!sh.dest_valid) {
@@ -1214,25 +1229,36 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
     int* send_counts = sh.send_counts.data();
     for (const int32_t q : sh.neighbours)
         send_counts[q] = 0;
-    resize_grow(sh.dest_begin, static_cast<size_t>(n_own) + 1);
+    // (the own pairs with a destination, sh.dest_pair, and the end of each one's destinations
+    // in sh.dest, sh.dest_end; grow-only)
     sh.dest.clear();
+    sh.dest_pair.clear();
+    sh.dest_end.clear();
     int64_t* stamp = sh.stamp.data();
-    sh.dest_begin[0] = 0;
     const int32_t* rank_begin = sh.body_rank_begin.data();
     const int32_t* rank = sh.body_rank.data();
     const uint8_t* other_reader = sh.other_reader.data();
+    const int32_t* node_owner = plan.node_owner.data();
     for (int32_t p = 0; p < n_own; ++p) {
         const int32_t pr = in_contact[own_k[p]];
         const NodeId j = cand_node[pr];
         const BodyId c = cand_body[pr];
-        // (the common case: a contactor body only this process needs, a node target it owns
-        // and no other process reads: no destination, without pair_ranks()' searches of the
-        // readers; the body's readers are in its body_rank)
-        if (rank_begin[c + 1] - rank_begin[c] == 1 && rank[rank_begin[c]] == me &&
-            j < ct.num_real_nodes && other_reader[j] == 0) {
-            sh.dest_begin[static_cast<size_t>(p) + 1] = static_cast<int32_t>(sh.dest.size());
-            continue;
+        // (the common case: a contactor body only this process needs, a target it owns (a
+        // node, or an edge whose both end nodes it owns) that no other process reads: no
+        // destination, without pair_ranks()' searches of the readers; the body's readers are
+        // in its body_rank)
+        if (rank_begin[c + 1] - rank_begin[c] == 1 && rank[rank_begin[c]] == me) {
+            bool alone;
+            if (j < ct.num_real_nodes) {
+                alone = other_reader[j] == 0;
+            } else {
+                const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
+                alone = node_owner[e[0]] == me && node_owner[e[1]] == me &&
+                        other_reader[e[0]] == 0 && other_reader[e[1]] == 0;
+            }
+            if (alone) continue;
         }
+        const size_t before = sh.dest.size();
         const int64_t tick = ++sh.tick;
         pair_ranks(ct, plan, j, c, [&](int32_t r) {
             if (r == me || stamp[r] == tick) return;
@@ -1242,7 +1268,10 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
             sh.dest.push_back(r);
             ++send_counts[r];
         });
-        sh.dest_begin[static_cast<size_t>(p) + 1] = static_cast<int32_t>(sh.dest.size());
+        if (sh.dest.size() > before) {
+            sh.dest_pair.push_back(p);
+            sh.dest_end.push_back(static_cast<int32_t>(sh.dest.size()));
+        }
     }
     sh.own_records = n_own;
     sh.records_sent = static_cast<int64_t>(sh.dest.size());
@@ -1260,12 +1289,12 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
     int32_t* at = sh.heads.data();
     for (int32_t q = 0; q < procs; ++q)
         at[q] = sh.send_displs[static_cast<size_t>(q)];
-    for (int32_t p = 0; p < n_own; ++p) {
-        const int32_t k = own_k[p];
+    for (size_t i = 0, d0 = 0; i < sh.dest_pair.size(); ++i) {
+        const int32_t k = own_k[sh.dest_pair[i]];
         const int32_t pr = in_contact[k];
-        for (int32_t d = sh.dest_begin[static_cast<size_t>(p)];
-             d < sh.dest_begin[static_cast<size_t>(p) + 1]; ++d) {
-            const int32_t q = sh.dest[static_cast<size_t>(d)];
+        const size_t d1 = static_cast<size_t>(sh.dest_end[i]);
+        for (size_t d = std::exchange(d0, d1); d < d1; ++d) {
+            const int32_t q = sh.dest[d];
             const PairResult& o = out[k];
             ContactRecord rec;
             rec.node = cand_node[pr];
@@ -1310,6 +1339,44 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
             o.f = rec.f;
         }
     }
+}
+
+// The received records' nodes (visit_pair_forces(); real nodes) marked in sh.exposed, and their
+// bodies in sh.exposed_body; value 1 to mark, 0 to clear the marks again.
+void mark_exposed(const Model& m, const ContactTopology& ct, const ContactShare& sh,
+                  uint8_t value) {
+    const size_t n_in = static_cast<size_t>(sh.records_received);
+    uint8_t* node = sh.exposed.data();
+    uint8_t* body = sh.exposed_body.data();
+    const BodyId* node_body = m.node_body.data();
+    for (size_t r = 0; r < n_in; ++r) {
+        visit_pair_forces(ct, sh.rec_node[r], sh.rec_out[r], [&](NodeId i, Vec2) {
+            node[i] = value;
+            body[node_body[i]] = value;
+        });
+    }
+}
+
+// Part 2 of the forces of a distributed step (after exchange_records()): the pairs own_k[0 ..
+// n_own) of this process (all its pairs in contact, in pair order) and the received records,
+// merged in pair order ((node, body): each pair has one owner, so the keys are distinct); their
+// forces are added to the nodes this process needs, in that order: every such node receives the
+// adds of the serial loop in its order. With `exposed` (a one-thread apply whose bookkeeping
+// added the own pairs' forces at every node no received record reaches, in pair order), own_k
+// lists only the own pairs that reach a node a received record reaches (sh.exposed), and the
+// forces go to those nodes only; all_k[0 .. n_all) is every own pair (the nodes written).
+void apply_merged(const Model& m, const ContactTopology& ct, const StepPlan& plan, State& s,
+                  const int32_t* own_k, int32_t n_own, const int32_t* all_k, int32_t n_all,
+                  bool exposed, const int32_t* in_contact, const PairResult* out) {
+    const ContactShare& sh = plan.contact;
+    constexpr int kW = static_cast<int>(kContactRecordBytes / sizeof(double));
+    const NodeId* cand_node = s.contact.cand.node.data();
+    const BodyId* cand_body = s.contact.cand.body.data();
+    const size_t n_in = static_cast<size_t>(sh.records_received);
+    const NodeId* rnode = sh.rec_node.data();
+    const BodyId* rbody = sh.rec_body.data();
+    const PairResult* rout = sh.rec_out.data();
+    int32_t* at = sh.heads.data();
 
     // 3. the merge in pair order: the own records and one sorted run per source (received
     //    in rank order: run q is [recv_displs[q], + recv_counts[q]) / kW)
@@ -1375,15 +1442,32 @@ void apply_records(const Model& m, const ContactTopology& ct, const StepPlan& pl
         c = rbody[r];
         return rout[r];
     };
-    // (the nodes they reach, needed here or not: a superset of the f_contact entries written)
-    note_contact_force_nodes(s.contact, total, [&](auto&& visit) {
+    // (the nodes they reach, needed here or not: a superset of the f_contact entries written;
+    // a set, so in any order)
+    note_contact_force_nodes(s.contact, static_cast<size_t>(n_all) + n_in, [&](auto&& visit) {
+        for (int32_t p = 0; p < n_all; ++p) {
+            const int32_t k = all_k[p];
+            visit_pair_forces(ct, cand_node[in_contact[k]], out[k], visit);
+        }
+        for (size_t r = 0; r < n_in; ++r)
+            visit_pair_forces(ct, rnode[r], rout[r], visit);
+    });
+    if (exposed) {
+        // (the nodes a received record reaches; the others have their forces from the
+        // bookkeeping)
+        const uint8_t* ex = sh.exposed.data();
         for (size_t idx = 0; idx < total; ++idx) {
             NodeId j;
             BodyId c;
             const PairResult& o = record(order[idx], j, c);
-            visit_pair_forces(ct, j, o, visit);
+            visit_pair_forces(ct, j, o, [f, fc, need, ex](NodeId i, Vec2 fi) {
+                if (!ex[i]) return;
+                if (need[i] & kNeedForce) f[i] += fi;
+                if (need[i] & kNeedContact) fc[i] += fi;
+            });
         }
-    });
+        return;
+    }
     // every node the pair reaches is needed here: the one-process add (no test per node)
     const uint8_t* all = sh.body_all.data();
     constexpr uint8_t kBoth = kNeedContact | kNeedForce;
@@ -1791,15 +1875,17 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         return at;
     };
     // the bookkeeping of the places [p0, p1) and of the old entries [ia, ia_end) (those below
-    // the pair at p1); forces: none (kNoForces), every pair's (kAllForces, one thread), or those
+    // the pair at p1); forces: none (kNoForces), every pair's (kAllForces, one thread), those
     // of the nodes [lo, hi) (kSliceForces: whole where the candidate's forces stay in the range,
-    // inside[pr], else node by node)
+    // inside[pr], else node by node), or those of a distributed step's nodes that no received
+    // record reaches (kDirectForces, with direct)
     // (captures by value: the force stores could alias anything captured by reference, which
     // the compiler would then reload after each of them)
     auto bookkeeping = [act, next, out, in_contact, key_node, key_body, f, fc, deep_limit, energy,
-                        &ct, &release, &span_pos, &span_begin](
-                           int32_t p0, int32_t p1, size_t ia, size_t ia_end, ContactApplyPart& part,
-                           auto forces, NodeId lo, NodeId hi, const uint8_t* inside) {
+                        &ct, &release, &span_pos,
+                        &span_begin](int32_t p0, int32_t p1, size_t ia, size_t ia_end,
+                                     ContactApplyPart& part, auto forces, NodeId lo, NodeId hi,
+                                     const uint8_t* inside, DirectAdds* direct) {
         ExactSum stored, dissipated;
         Real max_ratio = 0;
         int64_t deep = 0;
@@ -1844,6 +1930,31 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                 } else {
                     add_pair_forces(ct, f, fc, j, o, lo, hi);
                 }
+            } else if constexpr (decltype(forces)::value == kDirectForces) {
+                constexpr uint8_t kBoth = kNeedContact | kNeedForce;
+                const uint8_t* need = direct->need;
+                const uint8_t* ex = direct->exposed;
+                NodeId t0 = j, t1 = j;  // (the target's real nodes)
+                if (j >= ct.num_real_nodes) {
+                    const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
+                    t0 = e[0];
+                    t1 = e[1];
+                }
+                if (direct->body_all[c] && !direct->exposed_body[c] && need[t0] == kBoth &&
+                    need[t1] == kBoth && !ex[t0] && !ex[t1]) {
+                    add_pair_forces(ct, f, fc, j, o);
+                } else {
+                    bool reaches = false;
+                    visit_pair_forces(ct, j, o, [f, fc, need, ex, &reaches](NodeId i, Vec2 fi) {
+                        if (ex[i]) {
+                            reaches = true;
+                            return;
+                        }
+                        if (need[i] & kNeedForce) f[i] += fi;
+                        if (need[i] & kNeedContact) fc[i] += fi;
+                    });
+                    if (reaches) direct->deferred[direct->n_deferred++] = k;
+                }
             }
             const Real ratio = o.h.depth_ratio;
             max_ratio = std::max(max_ratio, ratio);
@@ -1866,15 +1977,37 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     ContactApplyPart* parts = cs.apply_part.data();
     int nparts = 1;
     const bool par_apply = max_threads > 1 && n_next >= kMinParallelApply;
-    // (a distributed run: the bookkeeping of its own pairs here, their forces with the other
-    // processes' records in apply_records())
+    // (a distributed run: the bookkeeping of its own pairs here; their forces with one thread
+    // here too where no other process's record reaches, the rest with the other processes'
+    // records in apply_merged(). own_k: the narrow phase's index of each own pair in pair order)
     const bool local = share != nullptr;
+    int32_t* own_k = nullptr;
+    DirectAdds direct{};
+    if (local) {
+        resize_grow(share->own_k, static_cast<size_t>(n_next));
+        own_k = share->own_k.data();
+        for_places(0, n_next, [own_k](int32_t p, int32_t k) { own_k[p] = k; });
+    }
     if (!par_apply) {
         parts[0] = ContactApplyPart{};
         if (local) {
-            bookkeeping(0, n_next, 0, n_act, parts[0], NoForces{}, 0, 0, nullptr);
+            // (the other processes' records first: the own pairs' forces at the nodes none
+            // of them reaches go in here, the rest in apply_merged())
+            resize_grow(share->deferred, static_cast<size_t>(n_next));
+            const size_t nr = static_cast<size_t>(ct.num_real_nodes);
+            if (share->exposed.size() != nr) share->exposed.assign(nr, 0);
+            if (share->exposed_body.size() != static_cast<size_t>(m.num_bodies()))
+                share->exposed_body.assign(static_cast<size_t>(m.num_bodies()), 0);
+            exchange_records(m, ct, *plan, *comm, s, own_k, n_next, in_contact, out);
+            mark_exposed(m, ct, *share, 1);
+            direct.need = share->need.data();
+            direct.exposed = share->exposed.data();
+            direct.exposed_body = share->exposed_body.data();
+            direct.body_all = share->body_all.data();
+            direct.deferred = share->deferred.data();
+            bookkeeping(0, n_next, 0, n_act, parts[0], DirectForces{}, 0, 0, nullptr, &direct);
         } else {
-            bookkeeping(0, n_next, 0, n_act, parts[0], AllForces{}, 0, 0, nullptr);
+            bookkeeping(0, n_next, 0, n_act, parts[0], AllForces{}, 0, 0, nullptr, nullptr);
         }
     } else if (local) {
         // (a distributed run: the bookkeeping by places; the forces in apply_records())
@@ -1889,7 +2022,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             };
             const int32_t p0 = slice(t), p1 = slice(t + 1);
             bookkeeping(p0, p1, t == 0 ? 0 : old_from(p0), old_from(p1), part, NoForces{}, 0, 0,
-                        nullptr);
+                        nullptr, nullptr);
         }
     } else {
         // thread t: the pairs of its two segments (ContactApplyLists), their bookkeeping and
@@ -1950,7 +2083,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                 part = ContactApplyPart{};
                 const int32_t p0 = place_of(c0), p1 = place_of(c1);
                 bookkeeping(p0, p1, sg == 0 ? 0 : old_from(p0), old_from(p1), part, SliceForces{},
-                            lo, hi, L.inside.data());
+                            lo, hi, L.inside.data(), nullptr);
             }
             foreign_below(npairs);
         }
@@ -1961,11 +2094,13 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                 visit_pair_forces(ct, key_node[in_contact[k]], out[k], visit);
             });
         });
+    } else if (!par_apply) {
+        apply_merged(m, ct, *plan, s, direct.deferred, direct.n_deferred, own_k, n_next, true,
+                     in_contact, out);
+        mark_exposed(m, ct, *share, 0);
     } else {
-        resize_grow(share->own_k, static_cast<size_t>(n_next));
-        int32_t* own_k = share->own_k.data();
-        for_places(0, n_next, [own_k](int32_t p, int32_t k) { own_k[p] = k; });
-        apply_records(m, ct, *plan, *comm, s, own_k, n_next, in_contact, out);
+        exchange_records(m, ct, *plan, *comm, s, own_k, n_next, in_contact, out);
+        apply_merged(m, ct, *plan, s, own_k, n_next, own_k, n_next, false, in_contact, out);
     }
     // the threads' shares in thread order (the exact sums in any order); a distributed run:
     // this process's share, then the sums, counts and maxima over the processes

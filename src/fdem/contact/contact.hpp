@@ -85,10 +85,16 @@ struct ContactShare {
     /// every pair whose forces this process adds, in pair order: k >= 0 its own pair k of the
     /// narrow phase's output, k < 0 received record -k - 1
     mutable std::vector<int32_t> order;
-    mutable std::vector<int32_t> dest, dest_begin;  ///< destinations of each own record
-    mutable std::vector<int64_t> stamp;             ///< per process (scratch)
-    mutable int64_t tick = 0;                       ///< stamp of the current record
-    mutable std::vector<int32_t> own_k, heads;      ///< the merge's scratch
+    /// destinations of the own records that have one: own record dest_pair[i] (its place in
+    /// pair order) goes to dest[dest_end[i - 1] .. dest_end[i]) (from 0 for i = 0)
+    mutable std::vector<int32_t> dest, dest_pair, dest_end;
+    mutable std::vector<int64_t> stamp;         ///< per process (scratch)
+    mutable int64_t tick = 0;                   ///< stamp of the current record
+    mutable std::vector<int32_t> own_k, heads;  ///< the merge's scratch
+    /// a one-thread apply: the own pairs whose forces reach a node a received record reaches
+    /// (left for the merge), and those nodes (per real node) and their bodies (per body) marked
+    mutable std::vector<int32_t> deferred;
+    mutable std::vector<uint8_t> exposed, exposed_body;
     /// per real node: the arrays this process adds contact forces to there, kNeedContact
     /// (f_contact: it owns the node or reads its contact force) | kNeedForce (f: it owns the node
     /// or reads its f, ContactShare::f_readers); 0: neither
