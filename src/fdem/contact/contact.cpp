@@ -1103,13 +1103,8 @@ void plan_body_ranks(const Model& m, const StepPlan& plan) {
     sh.need.assign(static_cast<size_t>(nn), 0);
     for (NodeId i = 0; i < nn; ++i)
         sh.need[static_cast<size_t>(i)] = plan.node_owner[static_cast<size_t>(i)] == me ? kBoth : 0;
-    sh.other_reader.assign(static_cast<size_t>(nn), 0);
     for (const auto& [i, r] : rd) {
-        if (r == me) {
-            sh.need[static_cast<size_t>(i)] |= kNeedContact;
-        } else {
-            sh.other_reader[static_cast<size_t>(i)] = 1;
-        }
+        if (r == me) sh.need[static_cast<size_t>(i)] |= kNeedContact;
     }
     // (a node in f_readers is in force_readers: its contact forces reach the reader)
     for (const auto& [i, r] : sh.f_readers) {
@@ -1146,9 +1141,11 @@ void plan_body_ranks(const Model& m, const StepPlan& plan) {
     sh.stamp.assign(static_cast<size_t>(plan.procs), -1);  // (free for the records' ticks)
 }
 
-// mark[q] = 1 for the other processes the records of plan's candidate pairs may go to
+// mark[q] = 1 for the other processes the records of plan's candidate pairs may go to; with
+// send, also the candidates (ascending) whose record has a destination (another process needs a
+// node its forces may reach)
 void may_send_marks(const Model& m, const State& s, const StepPlan& plan,
-                    std::vector<uint8_t>& mark) {
+                    std::vector<uint8_t>& mark, std::vector<int32_t>* send = nullptr) {
     const ContactShare& sh = plan.contact;
     if (sh.body_rank_begin.size() != static_cast<size_t>(m.num_bodies()) + 1)
         plan_body_ranks(m, plan);
@@ -1159,8 +1156,12 @@ void may_send_marks(const Model& m, const State& s, const StepPlan& plan,
     for (size_t pr = 0; pr < cand.node.size(); ++pr) {
         const NodeId j = cand.node[pr];
         if (plan.node_owner[static_cast<size_t>(target_node(ct, j))] != me) continue;
-        pair_ranks(ct, plan, j, cand.body[pr],
-                   [&](int32_t r) { mark[static_cast<size_t>(r)] = 1; });
+        bool other = false;
+        pair_ranks(ct, plan, j, cand.body[pr], [&](int32_t r) {
+            mark[static_cast<size_t>(r)] = 1;
+            other |= r != me;
+        });
+        if (send != nullptr && other) send->push_back(static_cast<int32_t>(pr));
     }
     mark[static_cast<size_t>(me)] = 0;
 }
@@ -1173,7 +1174,8 @@ void plan_record_exchange(const Model& m, const State& s, const StepPlan& plan, 
     const ContactShare& sh = plan.contact;
     const int32_t me = plan.rank, procs = plan.procs;
     std::vector<uint8_t> mark;
-    may_send_marks(m, s, plan, mark);
+    sh.send_cand.clear();
+    may_send_marks(m, s, plan, mark, &sh.send_cand);
     std::vector<int32_t> to;
     for (int32_t r = 0; r < procs; ++r) {
         if (mark[static_cast<size_t>(r)]) to.push_back(r);
@@ -1209,8 +1211,9 @@ void plan_record_exchange(const Model& m, const State& s, const StepPlan& plan, 
 // the processes that need a node they reach; the records of the others arrive, in pair order per
 // source, into sh.rec_node, rec_body and rec_out (sh.records_received of them). Part 2,
 // apply_merged(), adds their forces. Collective.
+template <class InContact>
 void exchange_records(const Model& m, const ContactTopology& ct, const StepPlan& plan,
-                      const Comm& comm, State& s, const int32_t* own_k, int32_t n_own,
+                      const Comm& comm, State& s, InContact&& in_contact_at,
                       const int32_t* in_contact, const PairResult* out) {
     const ContactShare& sh = plan.contact;
     StepTiming& timing = s.timing;
@@ -1225,42 +1228,24 @@ void exchange_records(const Model& m, const ContactTopology& ct, const StepPlan&
     static_assert(kContactRecordBytes % sizeof(double) == 0);
     constexpr int kW = static_cast<int>(kContactRecordBytes / sizeof(double));
 
-    // 1. each own record's destinations, and the records per destination
+    // 1. the destinations of the own pairs in contact that may have one (sh.send_cand, listed
+    //    once per broad phase: every other pair reaches only nodes no other process needs), and
+    //    the records per destination
     int* send_counts = sh.send_counts.data();
     for (const int32_t q : sh.neighbours)
         send_counts[q] = 0;
-    // (the own pairs with a destination, sh.dest_pair, and the end of each one's destinations
-    // in sh.dest, sh.dest_end; grow-only)
+    // (the pairs with a destination, sh.dest_pair (their index k in out), and the end of each
+    // one's destinations in sh.dest, sh.dest_end; grow-only)
     sh.dest.clear();
     sh.dest_pair.clear();
     sh.dest_end.clear();
     int64_t* stamp = sh.stamp.data();
-    const int32_t* rank_begin = sh.body_rank_begin.data();
-    const int32_t* rank = sh.body_rank.data();
-    const uint8_t* other_reader = sh.other_reader.data();
-    const int32_t* node_owner = plan.node_owner.data();
-    for (int32_t p = 0; p < n_own; ++p) {
-        const int32_t pr = in_contact[own_k[p]];
-        const NodeId j = cand_node[pr];
-        const BodyId c = cand_body[pr];
-        // (the common case: a contactor body only this process needs, a target it owns (a
-        // node, or an edge whose both end nodes it owns) that no other process reads: no
-        // destination, without pair_ranks()' searches of the readers; the body's readers are
-        // in its body_rank)
-        if (rank_begin[c + 1] - rank_begin[c] == 1 && rank[rank_begin[c]] == me) {
-            bool alone;
-            if (j < ct.num_real_nodes) {
-                alone = other_reader[j] == 0;
-            } else {
-                const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
-                alone = node_owner[e[0]] == me && node_owner[e[1]] == me &&
-                        other_reader[e[0]] == 0 && other_reader[e[1]] == 0;
-            }
-            if (alone) continue;
-        }
+    for (const int32_t pr : sh.send_cand) {
+        const int32_t k = in_contact_at(pr);
+        if (k < 0) continue;  // (not in contact)
         const size_t before = sh.dest.size();
         const int64_t tick = ++sh.tick;
-        pair_ranks(ct, plan, j, c, [&](int32_t r) {
+        pair_ranks(ct, plan, cand_node[pr], cand_body[pr], [&](int32_t r) {
             if (r == me || stamp[r] == tick) return;
             stamp[r] = tick;
             FDEM_ASSERT(std::binary_search(sh.neighbours.begin(), sh.neighbours.end(), r),
@@ -1269,11 +1254,10 @@ void exchange_records(const Model& m, const ContactTopology& ct, const StepPlan&
             ++send_counts[r];
         });
         if (sh.dest.size() > before) {
-            sh.dest_pair.push_back(p);
+            sh.dest_pair.push_back(k);
             sh.dest_end.push_back(static_cast<int32_t>(sh.dest.size()));
         }
     }
-    sh.own_records = n_own;
     sh.records_sent = static_cast<int64_t>(sh.dest.size());
 
     // 2. the records, one message to and from each neighbour (its length tells the count)
@@ -1290,7 +1274,7 @@ void exchange_records(const Model& m, const ContactTopology& ct, const StepPlan&
     for (int32_t q = 0; q < procs; ++q)
         at[q] = sh.send_displs[static_cast<size_t>(q)];
     for (size_t i = 0, d0 = 0; i < sh.dest_pair.size(); ++i) {
-        const int32_t k = own_k[sh.dest_pair[i]];
+        const int32_t k = sh.dest_pair[i];
         const int32_t pr = in_contact[k];
         const size_t d1 = static_cast<size_t>(sh.dest_end[i]);
         for (size_t d = std::exchange(d0, d1); d < d1; ++d) {
@@ -1981,12 +1965,31 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     // here too where no other process's record reaches, the rest with the other processes'
     // records in apply_merged(). own_k: the narrow phase's index of each own pair in pair order)
     const bool local = share != nullptr;
+    // the narrow phase's chunk of candidate pr < npairs, and where pr is or would be in its
+    // ascending list of pairs in contact (in_contact)
+    const auto locate = [&](int32_t pr, int32_t& ch) {
+        ch = static_cast<int32_t>(static_cast<int64_t>(pr) * kPairChunks / npairs);
+        while (ch + 1 < kPairChunks && chunk_begin(ch + 1) <= pr)
+            ++ch;
+        while (ch > 0 && chunk_begin(ch) > pr)
+            --ch;
+        const int32_t* b = in_contact + chunk_begin(ch);
+        return std::lower_bound(b, b + chunk_count[ch], pr);
+    };
+    // the index k (in_contact[k] == pr, out[k] its result) of candidate pr, -1 if not in contact
+    const auto in_contact_at = [&](int32_t pr) {
+        int32_t ch;
+        const int32_t* it = locate(pr, ch);
+        if (it == in_contact + chunk_begin(ch) + chunk_count[ch] || *it != pr) return -1;
+        return static_cast<int32_t>(it - in_contact);
+    };
     int32_t* own_k = nullptr;
     DirectAdds direct{};
     if (local) {
         resize_grow(share->own_k, static_cast<size_t>(n_next));
         own_k = share->own_k.data();
         for_places(0, n_next, [own_k](int32_t p, int32_t k) { own_k[p] = k; });
+        share->own_records = n_next;
     }
     if (!par_apply) {
         parts[0] = ContactApplyPart{};
@@ -1998,7 +2001,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             if (share->exposed.size() != nr) share->exposed.assign(nr, 0);
             if (share->exposed_body.size() != static_cast<size_t>(m.num_bodies()))
                 share->exposed_body.assign(static_cast<size_t>(m.num_bodies()), 0);
-            exchange_records(m, ct, *plan, *comm, s, own_k, n_next, in_contact, out);
+            exchange_records(m, ct, *plan, *comm, s, in_contact_at, in_contact, out);
             mark_exposed(m, ct, *share, 1);
             direct.need = share->need.data();
             direct.exposed = share->exposed.data();
@@ -2032,17 +2035,6 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         ContactApplyLists& L = cs.apply_lists;
         const int built = L.threads;  // (read before the region: the same test on every thread)
         const int64_t nn = ct.num_real_nodes;
-        // the narrow phase's chunk of candidate pr < npairs, and where pr is or would be in its
-        // ascending list of pairs in contact (in_contact)
-        const auto locate = [&](int32_t pr, int32_t& ch) {
-            ch = static_cast<int32_t>(static_cast<int64_t>(pr) * kPairChunks / npairs);
-            while (ch + 1 < kPairChunks && chunk_begin(ch + 1) <= pr)
-                ++ch;
-            while (ch > 0 && chunk_begin(ch) > pr)
-                --ch;
-            const int32_t* b = in_contact + chunk_begin(ch);
-            return std::lower_bound(b, b + chunk_count[ch], pr);
-        };
         // the place of the first pair in contact at or after candidate pr
         const auto place_of = [&](int32_t pr) {
             if (pr >= npairs) return n_next;
@@ -2099,7 +2091,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                      in_contact, out);
         mark_exposed(m, ct, *share, 0);
     } else {
-        exchange_records(m, ct, *plan, *comm, s, own_k, n_next, in_contact, out);
+        exchange_records(m, ct, *plan, *comm, s, in_contact_at, in_contact, out);
         apply_merged(m, ct, *plan, s, own_k, n_next, own_k, n_next, false, in_contact, out);
     }
     // the threads' shares in thread order (the exact sums in any order); a distributed run:
@@ -2393,6 +2385,7 @@ void gather_candidates(State& s, const StepPlan& plan, const Comm& comm) {
         cand.begin.push_back(static_cast<int32_t>(cand.tri.size()));
     }
     plan.contact.total_candidates = static_cast<int64_t>(cand.node.size());
+    plan.contact.dest_valid = false;  // (ContactShare::send_cand indexes the candidates)
 }
 
 const std::vector<BodyId>& contactor_bodies(const Model& m, const State& s, const StepPlan& plan) {

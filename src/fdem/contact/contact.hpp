@@ -85,9 +85,12 @@ struct ContactShare {
     /// every pair whose forces this process adds, in pair order: k >= 0 its own pair k of the
     /// narrow phase's output, k < 0 received record -k - 1
     mutable std::vector<int32_t> order;
-    /// destinations of the own records that have one: own record dest_pair[i] (its place in
-    /// pair order) goes to dest[dest_end[i - 1] .. dest_end[i]) (from 0 for i = 0)
+    /// destinations of the own records that have one: the pair of the narrow phase's output
+    /// index dest_pair[i] goes to dest[dest_end[i - 1] .. dest_end[i]) (from 0 for i = 0)
     mutable std::vector<int32_t> dest, dest_pair, dest_end;
+    /// the own candidate pairs whose record may have a destination (ascending; listed with
+    /// the neighbours, once per broad phase or plan)
+    mutable std::vector<int32_t> send_cand;
     mutable std::vector<int64_t> stamp;         ///< per process (scratch)
     mutable int64_t tick = 0;                   ///< stamp of the current record
     mutable std::vector<int32_t> own_k, heads;  ///< the merge's scratch
@@ -104,9 +107,6 @@ struct ContactShare {
     mutable std::vector<int32_t> body_rank_begin, body_rank;
     /// per body: this process needs all of its nodes
     mutable std::vector<uint8_t> body_all;
-    /// per real node: another process reads its forces (force_readers), so a pair of this
-    /// process's that reaches it has a destination; 0 everywhere without readers
-    mutable std::vector<uint8_t> other_reader;
     mutable std::vector<int32_t> neighbours;  ///< processes it may exchange records with
     mutable bool dest_valid = false;          ///< the lists above match the plan and candidates
     /// cs.active may hold other processes' pairs (the serial list after a restore, a
