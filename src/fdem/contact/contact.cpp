@@ -159,7 +159,7 @@ inline void visit_node_force(const ContactTopology& ct, NodeId i, Vec2 f, Visit&
 
 // f on the target, -N_i f on the contactor's vertices (eq. 20): every force of one pair in
 // contact, target first, then vertices 0, 1, 2
-// (always inlined: the one-process apply loop and apply_records() both call it; as a call the
+// (always inlined: the one-process apply loop and apply_merged() both call it; as a call the
 // serial loop ran +0.8 % more instructions, callgrind of the saturated pack)
 template <class Visit>
 [[gnu::always_inline]] inline void visit_pair_forces(const ContactTopology& ct, NodeId j,
@@ -1755,7 +1755,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
     s.timing.mark(StepPhase::NarrowPhase);
     // the pairs in contact, as spans [span_begin, + chunk_count) of in_contact and out in pair
     // order: the chunks' fronts (a distributed run: its own pairs; the other processes' records
-    // come in apply_records())
+    // come in exchange_records())
     int32_t span_begin[kPairChunks];
     for (int32_t ch = 0; ch < kPairChunks; ++ch)
         span_begin[ch] = chunk_begin(ch);
@@ -2013,7 +2013,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             bookkeeping(0, n_next, 0, n_act, parts[0], AllForces{}, 0, 0, nullptr, nullptr);
         }
     } else if (local) {
-        // (a distributed run: the bookkeeping by places; the forces in apply_records())
+        // (a distributed run: the bookkeeping by places; the forces in apply_merged())
 #pragma omp parallel
         {
             const int nt = omp_get_num_threads(), t = omp_get_thread_num();
