@@ -173,6 +173,14 @@ add_test(NAME mpi.same_as_serial.few_node_groups
                  ${mpi_out}/few_groups)
 set_tests_properties(mpi.same_as_serial.few_node_groups PROPERTIES LABELS mpi TIMEOUT 120
                      PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: fewer node groups")
+# a distributed run with history.csv as its only output gathers the joints' state alone at
+# its output steps and the whole State at the last: the serial bits (history_only.sh)
+add_test(NAME mpi.same_as_serial.history_only
+         COMMAND ${CMAKE_COMMAND} -E env ${FDEM_MPI_ENV}
+                 ${mpi_dir}/history_only.sh $<TARGET_FILE:fdem_cli> ${MPIEXEC_EXECUTABLE}
+                 ${mpi_out}/history_only)
+set_tests_properties(mpi.same_as_serial.history_only PROPERTIES LABELS mpi TIMEOUT 120
+                     PROCESSORS 2 PASS_REGULAR_EXPRESSION "OK: history-only output")
 # scripts/scaling (docs/parallel.md "Measuring scaling"): the two scenes at toy sizes, one round;
 # the summary lines and scaling.csv's rows (3 runs per scene and round)
 add_test(NAME mpi.scaling_script
