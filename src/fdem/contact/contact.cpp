@@ -227,6 +227,32 @@ inline void add_pair_forces(const ContactTopology& ct, Vec2* f, Vec2* fc, NodeId
     });
 }
 
+// A distributed step's add at real node i: to f and f_contact as far as this process needs them
+// there (ContactShare::need)
+inline void add_needed(Vec2* f, Vec2* fc, const uint8_t* need, NodeId i, Vec2 fi) {
+    if (need[i] & kNeedForce) f[i] += fi;
+    if (need[i] & kNeedContact) fc[i] += fi;
+}
+
+// The real nodes of target j: the node (a = b = j), or an edge target's end nodes
+inline void target_ends(const ContactTopology& ct, NodeId j, NodeId& a, NodeId& b) {
+    a = b = j;
+    if (j < ct.num_real_nodes) return;
+    const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
+    a = e[0];
+    b = e[1];
+}
+
+// A distributed step: this process needs f and f_contact at every node the forces of pair
+// (target j, contactor c) reach (ContactShare::need, body_all), so the one-process add applies
+inline bool all_needed(const ContactTopology& ct, const uint8_t* need, const uint8_t* body_all,
+                       NodeId j, BodyId c) {
+    constexpr uint8_t kBoth = kNeedContact | kNeedForce;
+    NodeId a, b;
+    target_ends(ct, j, a, b);
+    return body_all[c] && need[a] == kBoth && need[b] == kBoth;
+}
+
 // After an apply: the nodes its pairs' forces reached, added to ContactState::fc_nodes (which
 // stays ascending without repeats); each(visit) walks visit_pair_forces() of every pair it
 // applied. An apply that would overflow the list's reserved capacity (never grown in the step)
@@ -1139,6 +1165,9 @@ void plan_body_ranks(const Model& m, const StepPlan& plan) {
         sh.body_all[static_cast<size_t>(b)] = all;
     }
     sh.stamp.assign(static_cast<size_t>(plan.procs), -1);  // (free for the records' ticks)
+    // (the marks of a one-thread apply, cleared after each use)
+    sh.exposed.assign(static_cast<size_t>(nn), 0);
+    sh.exposed_body.assign(static_cast<size_t>(m.num_bodies()), 0);
 }
 
 // mark[q] = 1 for the other processes the records of plan's candidate pairs may go to; with
@@ -1445,36 +1474,25 @@ void apply_merged(const Model& m, const ContactTopology& ct, const StepPlan& pla
             BodyId c;
             const PairResult& o = record(order[idx], j, c);
             visit_pair_forces(ct, j, o, [f, fc, need, ex](NodeId i, Vec2 fi) {
-                if (!ex[i]) return;
-                if (need[i] & kNeedForce) f[i] += fi;
-                if (need[i] & kNeedContact) fc[i] += fi;
+                if (ex[i]) add_needed(f, fc, need, i, fi);
             });
         }
         return;
     }
     // every node the pair reaches is needed here: the one-process add (no test per node)
     const uint8_t* all = sh.body_all.data();
-    constexpr uint8_t kBoth = kNeedContact | kNeedForce;
-    const auto all_needed = [&](NodeId j, BodyId c) {
-        if (!all[c]) return false;
-        if (j < ct.num_real_nodes) return need[j] == kBoth;
-        const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
-        return need[e[0]] == kBoth && need[e[1]] == kBoth;
-    };
     const int max_threads = omp_get_max_threads();
     if (max_threads < 2 || total < static_cast<size_t>(kMinParallelApply)) {
         for (size_t idx = 0; idx < total; ++idx) {
             NodeId j;
             BodyId c;
             const PairResult& o = record(order[idx], j, c);
-            if (all_needed(j, c)) {
+            if (all_needed(ct, need, all, j, c)) {
                 add_pair_forces(ct, f, fc, j, o);
                 continue;
             }
-            visit_pair_forces(ct, j, o, [f, fc, need](NodeId i, Vec2 fi) {
-                if (need[i] & kNeedForce) f[i] += fi;
-                if (need[i] & kNeedContact) fc[i] += fi;
-            });
+            visit_pair_forces(ct, j, o,
+                              [f, fc, need](NodeId i, Vec2 fi) { add_needed(f, fc, need, i, fi); });
         }
         return;
     }
@@ -1492,9 +1510,7 @@ void apply_merged(const Model& m, const ContactTopology& ct, const StepPlan& pla
             pair_span(m, ct, j, c, a, b);
             if (b < lo || a >= hi) continue;
             visit_pair_forces(ct, j, o, [f, fc, need, lo, hi](NodeId i, Vec2 fi) {
-                if (i < lo || i >= hi) return;
-                if (need[i] & kNeedForce) f[i] += fi;
-                if (need[i] & kNeedContact) fc[i] += fi;
+                if (i >= lo && i < hi) add_needed(f, fc, need, i, fi);
             });
         }
     }
@@ -1915,17 +1931,12 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                     add_pair_forces(ct, f, fc, j, o, lo, hi);
                 }
             } else if constexpr (decltype(forces)::value == kDirectForces) {
-                constexpr uint8_t kBoth = kNeedContact | kNeedForce;
                 const uint8_t* need = direct->need;
                 const uint8_t* ex = direct->exposed;
-                NodeId t0 = j, t1 = j;  // (the target's real nodes)
-                if (j >= ct.num_real_nodes) {
-                    const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
-                    t0 = e[0];
-                    t1 = e[1];
-                }
-                if (direct->body_all[c] && !direct->exposed_body[c] && need[t0] == kBoth &&
-                    need[t1] == kBoth && !ex[t0] && !ex[t1]) {
+                NodeId t0, t1;
+                target_ends(ct, j, t0, t1);
+                if (all_needed(ct, need, direct->body_all, j, c) && !direct->exposed_body[c] &&
+                    !ex[t0] && !ex[t1]) {
                     add_pair_forces(ct, f, fc, j, o);
                 } else {
                     bool reaches = false;
@@ -1934,8 +1945,7 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                             reaches = true;
                             return;
                         }
-                        if (need[i] & kNeedForce) f[i] += fi;
-                        if (need[i] & kNeedContact) fc[i] += fi;
+                        add_needed(f, fc, need, i, fi);
                     });
                     if (reaches) direct->deferred[direct->n_deferred++] = k;
                 }
@@ -1997,10 +2007,6 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
             // (the other processes' records first: the own pairs' forces at the nodes none
             // of them reaches go in here, the rest in apply_merged())
             resize_grow(share->deferred, static_cast<size_t>(n_next));
-            const size_t nr = static_cast<size_t>(ct.num_real_nodes);
-            if (share->exposed.size() != nr) share->exposed.assign(nr, 0);
-            if (share->exposed_body.size() != static_cast<size_t>(m.num_bodies()))
-                share->exposed_body.assign(static_cast<size_t>(m.num_bodies()), 0);
             exchange_records(m, ct, *plan, *comm, s, in_contact_at, in_contact, out);
             mark_exposed(m, ct, *share, 1);
             direct.need = share->need.data();

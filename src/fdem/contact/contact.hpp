@@ -95,7 +95,8 @@ struct ContactShare {
     mutable int64_t tick = 0;                   ///< stamp of the current record
     mutable std::vector<int32_t> own_k, heads;  ///< the merge's scratch
     /// a one-thread apply: the own pairs whose forces reach a node a received record reaches
-    /// (left for the merge), and those nodes (per real node) and their bodies (per body) marked
+    /// (left for the merge), and those nodes (per node) and their bodies (per body) marked (sized
+    /// with need and body_all, zero between steps)
     mutable std::vector<int32_t> deferred;
     mutable std::vector<uint8_t> exposed, exposed_body;
     /// per real node: the arrays this process adds contact forces to there, kNeedContact
