@@ -94,6 +94,8 @@ struct ContactShare {
     mutable std::vector<int64_t> stamp;         ///< per process (scratch)
     mutable int64_t tick = 0;                   ///< stamp of the current record
     mutable std::vector<int32_t> own_k, heads;  ///< the merge's scratch
+    /// a threaded merged apply: thread t adds at the real nodes [thread_lo[t], thread_lo[t + 1])
+    mutable std::vector<NodeId> thread_lo;
     /// a one-thread apply: the own pairs whose forces reach a node a received record reaches
     /// (left for the merge), and those nodes (per node) and their bodies (per body) marked (sized
     /// with need and body_all, zero between steps)
