@@ -126,6 +126,7 @@ struct alignas(64) ContactApplyPart {
 /// saved: threads = 0 (not built) wherever the candidates are written.
 struct ContactApplyLists {
     int32_t threads = 0;                 ///< T the lists were built for; 0: not built
+    std::vector<NodeId> range_lo;        ///< T + 1: thread u adds at [range_lo[u], range_lo[u + 1])
     std::vector<int32_t> first;          ///< 2 T + 1: the first candidate of each segment, then all
     std::vector<uint8_t> inside;         ///< per candidate: its forces stay in its thread's range
     std::vector<int32_t> foreign_begin;  ///< T + 1: range u's foreign list, CSR

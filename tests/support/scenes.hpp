@@ -172,6 +172,9 @@ struct PackOptions {
     /// the pack centre), so every gap closes at about the same time (a contact-saturated pack,
     /// issue #16); the jitter is the same as for the halves
     bool converge = false;
+    /// resting blocks added before the pack, in a row far from it (no contact): their nodes take
+    /// the first ids, so the pairs in contact lie in the later ids only
+    int idle_blocks = 0;
 };
 
 /// Contact-heavy pack: blocks_x x blocks_y square blocks (two triangles each, so every node is
@@ -196,6 +199,17 @@ inline Model make_contact_pack(const PackOptions& o) {
     const Real pitch = o.size + o.gap;
     const Real half_w = 0.5 * (o.blocks_x * pitch + (o.brick_bond ? 0.5 * pitch : 0.0));
     const Real half_h = 0.5 * o.blocks_y * pitch;
+    for (int k = 0; k < o.idle_blocks; ++k) {
+        const Real x0 = k * 2 * pitch, y0 = -10 * (o.blocks_y * pitch + o.size);
+        const int32_t b = static_cast<int32_t>(mesh.nodes.size());
+        mesh.nodes.push_back({x0, y0});
+        mesh.nodes.push_back({x0 + o.size, y0});
+        mesh.nodes.push_back({x0 + o.size, y0 + o.size});
+        mesh.nodes.push_back({x0, y0 + o.size});
+        mesh.tris.push_back({b, b + 1, b + 2});
+        mesh.tris.push_back({b, b + 2, b + 3});
+        body_v.push_back({0, 0});
+    }
     for (int k : order) {
         const int i = k % o.blocks_x, j = k / o.blocks_x;
         const Real shift = o.brick_bond && j % 2 == 1 ? 0.5 * pitch : 0.0;

@@ -1547,30 +1547,46 @@ void apply_merged(const Model& m, const ContactTopology& ct, const StepPlan& pla
     }
 }
 
-// The segments and foreign lists of the apply with T threads (ContactApplyLists) for the
-// candidates cand. The candidates ascend by target, real nodes first, then edge targets. Segment
-// u < T holds the candidates whose real target lies in node range u, [N u / T, N (u + 1) / T);
-// segment T + u the edge targets whose edge's smaller node (its running maximum: the segments
-// must be runs) lies in range u. Thread u runs segments u and T + u. A candidate whose force
-// span (pair_span()) leaves its thread's range is on the foreign list of every other range the
-// span meets, in ascending order. Serial; run by the first apply with T threads after the
-// candidates changed.
+// The node ranges, segments and foreign lists of the apply with T threads (ContactApplyLists) for
+// the candidates cand. The candidates ascend by target, real nodes first, then edge targets. The
+// T node ranges [range_lo[u], range_lo[u + 1]) hold about equal numbers of candidates: their
+// bounds are quantiles of a sample of the candidates' nodes (a target, or an edge target's
+// smaller node). (Equal shares of the node ids gave one thread every pair where the contacts
+// lie in part of the ids, e.g. a pack beside a large continuum body: 2 threads applied in 1.08
+// s what one did in 1.15 s, docs/performance.md, stop 53.) Segment u < T holds the candidates
+// whose real target lies in node range u; segment T + u the edge targets whose edge's smaller
+// node (its running maximum: the segments must be runs) lies in range u. Thread u runs segments u
+// and T + u. A candidate whose force span (pair_span()) leaves its thread's range is on the foreign
+// list of every other range the span meets, in ascending order. Serial; run by the first apply with
+// T threads after the candidates changed.
 void build_apply_lists(const Model& m, const ContactTopology& ct, const Candidates& cand, int T,
                        ContactApplyLists& L) {
     const int32_t np = static_cast<int32_t>(cand.node.size());
     const NodeId nr = ct.num_real_nodes;
-    const int64_t nn = nr;
-    const auto range_lo = [nn, T](int u) { return static_cast<NodeId>(nn * u / T); };
-    const auto range_of = [&](NodeId i) {  // the range holding real node i
-        int u = static_cast<int>(static_cast<int64_t>(i) * T / std::max<int64_t>(nn, 1));
-        u = std::clamp(u, 0, T - 1);
-        while (u + 1 < T && range_lo(u + 1) <= i)
-            ++u;
-        while (u > 0 && range_lo(u) > i)
-            --u;
-        return u;
-    };
     const size_t ts = static_cast<size_t>(T);
+    const auto rep = [&](NodeId j) {  // the node a candidate of target j counts for
+        if (j < nr) return j;
+        const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
+        return std::min(e[0], e[1]);
+    };
+    L.range_lo.resize(ts + 1);
+    {
+        constexpr size_t kSamples = 1024;
+        std::array<NodeId, kSamples> sample;
+        const size_t n = static_cast<size_t>(np), ns = std::min(n, kSamples);
+        for (size_t q = 0; q < ns; ++q)
+            sample[q] = rep(cand.node[(2 * q + 1) * n / (2 * ns)]);
+        std::sort(sample.begin(), sample.begin() + static_cast<ptrdiff_t>(ns));
+        L.range_lo[0] = 0;
+        for (size_t u = 1; u < ts; ++u)
+            L.range_lo[u] = ns > 0 ? sample[u * ns / ts]
+                                   : static_cast<NodeId>(static_cast<int64_t>(nr) * u / T);
+        L.range_lo[ts] = nr;
+    }
+    const auto range_of = [&](NodeId i) {  // the range holding real node i (ranges may be empty)
+        const NodeId* b = L.range_lo.data();
+        return static_cast<int>(std::upper_bound(b + 1, b + T, i) - (b + 1));
+    };
     L.first.assign(2 * ts + 1, np);
     L.inside.resize(static_cast<size_t>(np));
     L.foreign_begin.assign(ts + 1, 0);
@@ -2071,7 +2087,6 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
         // books into parts[s], so the parts combine in pair order
         ContactApplyLists& L = cs.apply_lists;
         const int built = L.threads;  // (read before the region: the same test on every thread)
-        const int64_t nn = ct.num_real_nodes;
         // the place of the first pair in contact at or after candidate pr
         const auto place_of = [&](int32_t pr) {
             if (pr >= npairs) return n_next;
@@ -2087,8 +2102,8 @@ void contact_forces_impl(const Model& m, State& s, const StepPlan* plan, const C
                 build_apply_lists(m, ct, cs.cand, nt, L);
             }
             if (t == 0) nparts = 2 * nt;
-            const NodeId lo = static_cast<NodeId>(nn * t / nt);
-            const NodeId hi = static_cast<NodeId>(nn * (t + 1) / nt);
+            const NodeId lo = L.range_lo[static_cast<size_t>(t)];
+            const NodeId hi = L.range_lo[static_cast<size_t>(t) + 1];
             const int32_t* fl = L.foreign.data();
             int32_t q = L.foreign_begin[static_cast<size_t>(t)];
             const int32_t qe = L.foreign_begin[static_cast<size_t>(t) + 1];
