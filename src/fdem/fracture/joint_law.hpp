@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fdem/assert.hpp"
 #include "fdem/fracture.hpp"
 
 namespace fdem {
@@ -94,6 +95,7 @@ inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Rea
                               Real& zmax, Real* dn_max = nullptr, Real* ds_max = nullptr,
                               Real* an_min = nullptr, Real* as_min = nullptr) {
     JointPoint r;
+    bool raised = false;  // dn_max or ds_max rose here
     // eq. 9.5, compressive branch, and eq. 9.7: f_s from the current sigma_c = p o/h
     Real sigma_c = 0;
     if (o < 0) {
@@ -123,12 +125,31 @@ inline JointPoint joint_point(const JointLaw& L, Real h, Real inv_h, Real o, Rea
             zmax = softening_z(L.curve, D);
         }
         if (dn_max != nullptr) {  // eq. 9.30: each mode's largest damage (NaN: unchanged)
-            if (*dn_max < r.Dn) *dn_max = r.Dn;
-            if (*ds_max < r.Ds) *ds_max = r.Ds;
+            if (*dn_max < r.Dn) *dn_max = r.Dn, raised = true;
+            if (*ds_max < r.Ds) *ds_max = r.Ds, raised = true;
         }
     }
     r.z = dmax > 0 ? zmax : 1.0;
-    if (dn_max != nullptr) mixed_mode_shares(*dn_max, *ds_max, r, an_min, as_min);
+    if (dn_max != nullptr) {
+        if (raised || an_min == nullptr) {
+            mixed_mode_shares(*dn_max, *ds_max, r, an_min, as_min);
+        } else {
+            // dn_max, ds_max as when their shares were last lowered into an_min, as_min (every
+            // call folds them in, and the history starts at 0, 0 with shares 1): the shares of
+            // eq. 9.32 are the kept minima, as mixed_mode_shares() would return (a sqrt and
+            // three divisions per point of every damaged joint on every step, saved)
+            if constexpr (kAssertsEnabled) {
+                JointPoint q = r;
+                Real an = *an_min, as = *as_min;
+                mixed_mode_shares(*dn_max, *ds_max, q, &an, &as);
+                FDEM_ASSERT((q.a_n == *an_min || (q.a_n != q.a_n && *an_min != *an_min)) &&
+                                (q.a_s == *as_min || (q.a_s != q.a_s && *as_min != *as_min)),
+                            "the kept shares of a joint point are not those of its damage");
+            }
+            r.a_n = *an_min;
+            r.a_s = *as_min;
+        }
+    }
     // eq. 9.5: compression penalty, parabolic hardening, softening plateau scaled by z(D_max)
     // (and by the tensile share a_n of eq. 9.30: 1 unless MixedMode::Proportional)
     if (o < 0) {
