@@ -199,8 +199,8 @@ inline Model make_contact_pack(const PackOptions& o) {
     const Real pitch = o.size + o.gap;
     const Real half_w = 0.5 * (o.blocks_x * pitch + (o.brick_bond ? 0.5 * pitch : 0.0));
     const Real half_h = 0.5 * o.blocks_y * pitch;
-    for (int k = 0; k < o.idle_blocks; ++k) {
-        const Real x0 = k * 2 * pitch, y0 = -10 * (o.blocks_y * pitch + o.size);
+    // a square block of two triangles with its lower left corner at (x0, y0)
+    const auto add_block = [&](Real x0, Real y0) {
         const int32_t b = static_cast<int32_t>(mesh.nodes.size());
         mesh.nodes.push_back({x0, y0});
         mesh.nodes.push_back({x0 + o.size, y0});
@@ -208,6 +208,9 @@ inline Model make_contact_pack(const PackOptions& o) {
         mesh.nodes.push_back({x0, y0 + o.size});
         mesh.tris.push_back({b, b + 1, b + 2});
         mesh.tris.push_back({b, b + 2, b + 3});
+    };
+    for (int k = 0; k < o.idle_blocks; ++k) {
+        add_block(k * 2 * pitch, -10 * (o.blocks_y * pitch + o.size));
         body_v.push_back({0, 0});
     }
     for (int k : order) {
@@ -215,13 +218,7 @@ inline Model make_contact_pack(const PackOptions& o) {
         const Real shift = o.brick_bond && j % 2 == 1 ? 0.5 * pitch : 0.0;
         const Real x0 = i * pitch + shift + 0.25 * o.gap * u(rng);
         const Real y0 = j * pitch + 0.25 * o.gap * u(rng);
-        const int32_t b = static_cast<int32_t>(mesh.nodes.size());
-        mesh.nodes.push_back({x0, y0});
-        mesh.nodes.push_back({x0 + o.size, y0});
-        mesh.nodes.push_back({x0 + o.size, y0 + o.size});
-        mesh.nodes.push_back({x0, y0 + o.size});
-        mesh.tris.push_back({b, b + 1, b + 2});
-        mesh.tris.push_back({b, b + 2, b + 3});
+        add_block(x0, y0);
         if (o.converge) {
             // jitter: 5 % of the closing speed of neighbours, speed x pitch / half extent
             const Real jit = 0.05 * o.speed * pitch / half_w;
