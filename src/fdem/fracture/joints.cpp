@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -243,6 +244,9 @@ struct Block {
     alignas(64) Real dax[kLanes], day[kLanes], dbx[kLanes], dby[kLanes];
     alignas(64) Real dw[kLanes];  ///< work increment (eq. 9.17)
     alignas(64) Real en[kLanes];  ///< w (psi_a + 4 psi_m + psi_b) (eq. 9.18), kEnergy only
+    // a block with damaged joints (kDamaged): which joints are not broken, and how many soften
+    alignas(64) Real live[kLanes];
+    int32_t softening = 0;
 };
 
 // joint_point_energy for an intact point (z = 1) lane-wise, both branches evaluated and one
@@ -277,6 +281,26 @@ struct Block {
     m = std::max(xi, eta);
 }
 
+// The law of a point in its elastic range whose damage does not grow (xi, eta <= 1), lane-wise,
+// softened by z = z(D_max) and scaled by the kept shares a_n, a_s of eq. 9.32 (1 with
+// MixedMode::Independent): joint_point's expressions for that case (sigma_c of the compressive
+// branch, the parabola times z and a_n, eq. 9.8 times z and a_s). With z = a_n = a_s = 1 (an
+// intact point) the same bits as intact_lane: x * 1 is x, and sigma_c + ft q of intact_lane is
+// sigma_c where o < 0 (q = +0) and +0 + ft q = ft q where o >= 0.
+[[gnu::always_inline]] inline void damaged_lane(const JointLaw& L, Real inv_h, Real o, Real s,
+                                                Real z, Real an, Real as, Real& sigma, Real& tau,
+                                                Real& m) {
+    const Real sigma_c = L.p * std::min(o, Real(0)) * inv_h;  // eq. 9.5
+    const Real fs = L.c - sigma_c * L.tan_phi;                // eq. 9.7
+    const Real inv_sp = (L.half_ps * inv_h) / fs;             // eq. 9.4
+    const Real xi = std::max(o, Real(0)) * L.half_p_over_ft * inv_h;
+    const Real eta = std::fabs(s) * inv_sp;
+    const Real st = L.ft * z * (xi * (2.0 - xi)) * an;  // eq. 9.5, times z(D_max) and a_n
+    sigma = o < 0 ? sigma_c : st;
+    tau = std::copysign(fs * z * (eta * (2.0 - eta)) * as, s);  // eq. 9.8
+    m = std::max(xi, eta);
+}
+
 // The law of joints j0 .. j0 + 7, all intact: true when all are of one law (its index in law).
 [[gnu::always_inline]] inline bool block_qualifies(const Joints& J, const JointState& s, int32_t j0,
                                                    int32_t& law) {
@@ -287,13 +311,48 @@ struct Block {
     return ok;
 }
 
+// The law of joints j0 .. j0 + 7, none broken or some (kDamaged blocks): true when all are of
+// one law (its index in law).
+[[gnu::always_inline]] inline bool block_qualifies_damaged(const Joints& J, int32_t j0,
+                                                           int32_t& law) {
+    law = J.law[j0];
+    bool ok = true;
+    for (int l = 0; l < kLanes; ++l)
+        ok &= J.law[j0 + l] == law;
+    return ok;
+}
+
 // Node positions of the 8 joints, corner k (0..3) to P.x[k], P.y[k] lane by lane.
 struct BlockPositions {
     alignas(64) Real x[4][kLanes];
     alignas(64) Real y[4][kLanes];
     alignas(64) Real fp[4][kLanes];  ///< last forces f0x, f0y, f1x, f1y (eq. 9.17)
     alignas(64) Real dp[4][kLanes];  ///< last separations dax, day, dbx, dby (eq. 9.17)
+    // kDamaged blocks: per point z(D_max) (1 where D_max = 0) and the kept shares (eq. 9.32)
+    alignas(64) Real z[3][kLanes];
+    alignas(64) Real an[3][kLanes];
+    alignas(64) Real as[3][kLanes];
 };
+
+// The damage state of a kDamaged block into P and B.live, B.softening (statuses, z, shares).
+[[gnu::always_inline]] inline void load_block_damage(const JointState& s, const JointLaw& L,
+                                                     bool mixed, int32_t j0, BlockPositions& P,
+                                                     Block& B) {
+    const bool prop = mixed && L.mixed == MixedMode::Proportional;
+    int32_t soft = 0;
+    for (int l = 0; l < kLanes; ++l) {
+        const size_t j = static_cast<size_t>(j0 + l);
+        const JointStatus st = s.status[j];
+        B.live[l] = st != JointStatus::Broken ? 1.0 : 0.0;
+        soft += st == JointStatus::Softening ? 1 : 0;
+        for (int k = 0; k < 3; ++k) {
+            P.z[k][l] = s.d_max[j][k] > 0 ? s.z_max[j][k] : 1.0;  // as joint_point's r.z
+            P.an[k][l] = prop ? s.an_min[j][k] : 1.0;
+            P.as[k][l] = prop ? s.as_min[j][k] : 1.0;
+        }
+    }
+    B.softening = soft;
+}
 
 [[gnu::always_inline]] inline void gather_positions(const Joints& J, const Vec2* __restrict x,
                                                     int32_t j0, BlockPositions& P) {
@@ -318,9 +377,15 @@ struct BlockPositions {
 // and B filled when all are long enough and elastic at their three points (then B holds what
 // one_joint would compute); false otherwise. Writes nothing else: the caller stores the eq. 9.17
 // state (f_prev, d_prev) of a qualified block.
-template <bool kEnergy>
+// kDamaged (never with kEnergy): softening and broken joints too, each intact or softening one
+// in its elastic range at its three points (its damage does not grow this step: then
+// one_joint changes nothing of its state but the eq. 9.17 records and counts it as softening);
+// broken lanes are computed but qualify always, keep their records (B holds their old ones)
+// and are skipped by the commit, as one_joint returns at once for them.
+template <bool kEnergy, bool kDamaged = false>
 [[gnu::always_inline]] inline bool block_core(const Joints& J, const JointLaw& L,
                                               const BlockPositions& P, int32_t j0, Block& B) {
+    static_assert(!(kEnergy && kDamaged));
     const Real* x0x = P.x[0];
     const Real* x0y = P.y[0];
     const Real* x1x = P.x[1];
@@ -351,13 +416,21 @@ template <bool kEnergy>
         const Real om = nx * dmx + ny * dmy, sm = ex * dmx + ey * dmy;
         const Real ob = nx * dbx + ny * dby, sb = ex * dbx + ey * dby;
         Real sga, taa, fsa, ma, sgm, tam, fsm, mm, sgb, tab, fsb, mb;
-        intact_lane(L, inv_h, oa, sa, sga, taa, fsa, ma);
-        intact_lane(L, inv_h, om, sm, sgm, tam, fsm, mm);
-        intact_lane(L, inv_h, ob, sb, sgb, tab, fsb, mb);
+        if constexpr (kDamaged) {
+            damaged_lane(L, inv_h, oa, sa, P.z[0][l], P.an[0][l], P.as[0][l], sga, taa, ma);
+            damaged_lane(L, inv_h, om, sm, P.z[1][l], P.an[1][l], P.as[1][l], sgm, tam, mm);
+            damaged_lane(L, inv_h, ob, sb, P.z[2][l], P.an[2][l], P.as[2][l], sgb, tab, mb);
+            fsa = fsm = fsb = 0;  // (energy only)
+        } else {
+            intact_lane(L, inv_h, oa, sa, sga, taa, fsa, ma);
+            intact_lane(L, inv_h, om, sm, sgm, tam, fsm, mm);
+            intact_lane(L, inv_h, ob, sb, sgb, tab, fsb, mb);
+        }
         // std::max({ma, mm, mb}) <= 1 as one_joint (first largest, operator<)
         Real mx = ma < mm ? mm : ma;
         mx = mx < mb ? mb : mx;
         good[l] = (lane_ok & (mx <= 1.0)) ? 1.0 : 0.0;
+        if constexpr (kDamaged) good[l] = B.live[l] == 0.0 ? 1.0 : good[l];
         // eq. 9.3
         const Real tax = sga * nx + taa * ex, tay = sga * ny + taa * ey;
         const Real tmx = sgm * nx + tam * ex, tmy = sgm * ny + tam * ey;
@@ -368,6 +441,17 @@ template <bool kEnergy>
         B.f1x[l] = mw * (tbx + 2.0 * tmx);
         B.f1y[l] = mw * (tby + 2.0 * tmy);
         B.dax[l] = dax, B.day[l] = day, B.dbx[l] = dbx, B.dby[l] = dby;
+        if constexpr (kDamaged) {  // a broken joint keeps its last records
+            const bool dead = B.live[l] == 0.0;
+            B.f0x[l] = dead ? fp[0][l] : B.f0x[l];
+            B.f0y[l] = dead ? fp[1][l] : B.f0y[l];
+            B.f1x[l] = dead ? fp[2][l] : B.f1x[l];
+            B.f1y[l] = dead ? fp[3][l] : B.f1y[l];
+            B.dax[l] = dead ? dp[0][l] : dax;
+            B.day[l] = dead ? dp[1][l] : day;
+            B.dbx[l] = dead ? dp[2][l] : dbx;
+            B.dby[l] = dead ? dp[3][l] : dby;
+        }
         // eq. 9.17 (as one_joint)
         B.dw[l] =
             -0.5 *
@@ -395,15 +479,29 @@ template <bool kEnergy>
     }
 }
 
-template <bool kEnergy>
+// the block's law (all joints of one law, intact; kDamaged: of any status) and, for kDamaged,
+// its damage state: false when the block does not qualify
+template <bool kDamaged>
+[[gnu::always_inline]] inline const JointLaw* block_law_of(const Joints& J, const JointState& s,
+                                                           int32_t j0, BlockPositions& P,
+                                                           Block& B) {
+    int32_t law;
+    if (kDamaged ? !block_qualifies_damaged(J, j0, law) : !block_qualifies(J, s, j0, law))
+        return nullptr;
+    const JointLaw* L = &J.laws[static_cast<size_t>(law)];
+    if constexpr (kDamaged) load_block_damage(s, *L, !s.dn_max.empty(), j0, P, B);
+    return L;
+}
+
+template <bool kEnergy, bool kDamaged = false>
 bool block_law_portable(const Joints& J, JointState& s, const Vec2* __restrict x, int32_t j0,
                         Block& B) {
-    int32_t law;
-    if (!block_qualifies(J, s, j0, law)) return false;
     BlockPositions P;
+    const JointLaw* L = block_law_of<kDamaged>(J, s, j0, P, B);
+    if (L == nullptr) return false;
     gather_positions(J, x, j0, P);
     load_block_state(s, j0, P);
-    if (!block_core<kEnergy>(J, J.laws[static_cast<size_t>(law)], P, j0, B)) return false;
+    if (!block_core<kEnergy, kDamaged>(J, *L, P, j0, B)) return false;
     store_block_state(s, j0, B);
     return true;
 }
@@ -462,15 +560,15 @@ FDEM_JOINT_AVX512_TARGET [[gnu::always_inline]] inline void store_records_avx512
     _mm512_storeu_pd(out + 24, _mm512_permutex2var_pd(ab_hi, r1, cd_hi));
 }
 
-template <bool kEnergy>
+template <bool kEnergy, bool kDamaged = false>
 FDEM_JOINT_AVX512_TARGET bool block_law_avx512(const Joints& J, JointState& s,
                                                const Vec2* __restrict x, int32_t j0, Block& B) {
-    int32_t law;
-    if (!block_qualifies(J, s, j0, law)) return false;
     BlockPositions P;
+    const JointLaw* L = block_law_of<kDamaged>(J, s, j0, P, B);
+    if (L == nullptr) return false;
     gather_positions_avx512(J, x, j0, P);
     load_block_state(s, j0, P);
-    if (!block_core<kEnergy>(J, J.laws[static_cast<size_t>(law)], P, j0, B)) return false;
+    if (!block_core<kEnergy, kDamaged>(J, *L, P, j0, B)) return false;
     static_assert(sizeof(s.f_prev[0]) == 4 * sizeof(double) &&
                   sizeof(s.d_prev[0]) == 4 * sizeof(double));
     store_records_avx512(s.f_prev[static_cast<size_t>(j0)].data(), B.f0x, B.f0y, B.f1x, B.f1y);
@@ -527,15 +625,15 @@ FDEM_JOINT_AVX2_TARGET [[gnu::always_inline]] inline void store_records_avx2(
     }
 }
 
-template <bool kEnergy>
+template <bool kEnergy, bool kDamaged = false>
 FDEM_JOINT_AVX2_TARGET bool block_law_avx2(const Joints& J, JointState& s, const Vec2* __restrict x,
                                            int32_t j0, Block& B) {
-    int32_t law;
-    if (!block_qualifies(J, s, j0, law)) return false;
     BlockPositions P;
+    const JointLaw* L = block_law_of<kDamaged>(J, s, j0, P, B);
+    if (L == nullptr) return false;
     gather_positions_avx2(J, x, j0, P);
     load_block_state(s, j0, P);
-    if (!block_core<kEnergy>(J, J.laws[static_cast<size_t>(law)], P, j0, B)) return false;
+    if (!block_core<kEnergy, kDamaged>(J, *L, P, j0, B)) return false;
     store_records_avx2(s.f_prev[static_cast<size_t>(j0)].data(), B.f0x, B.f0y, B.f1x, B.f1y);
     store_records_avx2(s.d_prev[static_cast<size_t>(j0)].data(), B.dax, B.day, B.dbx, B.dby);
     return true;
@@ -544,22 +642,26 @@ FDEM_JOINT_AVX2_TARGET bool block_law_avx2(const Joints& J, JointState& s, const
 
 using BlockFn = bool (*)(const Joints&, JointState&, const Vec2* __restrict, int32_t, Block&);
 
-// set by choose_path (at load) or detail::set_joint_path; [kEnergy]
-BlockFn g_block[2] = {nullptr, nullptr};
+// set by choose_path (at load) or detail::set_joint_path; [kEnergy], then [2]: the kDamaged
+// block (no energy)
+BlockFn g_block[3] = {nullptr, nullptr, nullptr};
+bool g_damaged = true;  // detail::set_damaged_blocks
 
 void choose_path(detail::JointPath p) {
     switch (p) {
         case detail::JointPath::Scalar:
-            g_block[0] = g_block[1] = nullptr;
+            g_block[0] = g_block[1] = g_block[2] = nullptr;
             break;
         case detail::JointPath::Portable:
             g_block[0] = &block_law_portable<false>;
             g_block[1] = &block_law_portable<true>;
+            g_block[2] = &block_law_portable<false, true>;
             break;
         case detail::JointPath::Avx512:
 #ifdef FDEM_JOINT_AVX512
             g_block[0] = &block_law_avx512<false>;
             g_block[1] = &block_law_avx512<true>;
+            g_block[2] = &block_law_avx512<false, true>;
 #else
             choose_path(detail::JointPath::Portable);
 #endif
@@ -568,6 +670,7 @@ void choose_path(detail::JointPath p) {
 #ifdef FDEM_JOINT_AVX512
             g_block[0] = &block_law_avx2<false>;
             g_block[1] = &block_law_avx2<true>;
+            g_block[2] = &block_law_avx2<false, true>;
 #else
             choose_path(detail::JointPath::Portable);
 #endif
@@ -583,9 +686,35 @@ void choose_path(detail::JointPath p) {
 const bool g_chosen = (choose_path(detail::JointPath::Auto), true);
 
 // The scalar commit of a qualified block, joint by joint in joint order (as one_joint).
-template <bool kEnergy, bool kScatter>
+// kDamaged: broken joints skipped (one_joint returns at once for them), the softening ones
+// counted.
+template <bool kEnergy, bool kScatter, bool kDamaged = false>
 [[gnu::always_inline]] inline void commit_block(const Joints& J, JointState& s, Vec2* __restrict f,
                                                 int32_t j0, const Block& B, ChunkOut& out) {
+    if constexpr (kDamaged) {
+        static_assert(!kEnergy);
+        Real work = out.work;
+        Real* __restrict wj = s.work.data() + j0;
+        for (int l = 0; l < kLanes; ++l) {
+            if (B.live[l] == 0.0) continue;
+            work += B.dw[l];
+            wj[l] += B.dw[l];
+            const int32_t j = j0 + l;
+            const Vec2 f0{B.f0x[l], B.f0y[l]}, f1{B.f1x[l], B.f1y[l]};
+            if constexpr (kScatter) {
+                const auto& nd = J.nodes[j];
+                f[nd[0]] += f0;
+                f[nd[1]] += f1;
+                f[nd[2]] -= f1;
+                f[nd[3]] -= f0;
+            } else {
+                s.jf[j] = {f0, f1};
+            }
+        }
+        out.work = work;
+        out.softening += B.softening;
+        return;
+    }
     // the chunk's sums in joint order, carried in registers (`out` lives in memory: its address
     // is taken by the scalar path, so `out.work += ` per joint was a chain of a store-forward and
     // an addition, ~9 cycles per joint)
@@ -636,6 +765,12 @@ void run_range(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
     };
     int32_t j = begin;
     if (const BlockFn block = g_block[kEnergy ? 1 : 0]) {
+        // blocks with softening or broken joints: without the energy only (the stored energy of
+        // a softened point is not in the lanes)
+        [[maybe_unused]] const BlockFn damaged = kEnergy || !g_damaged ? nullptr : g_block[2];
+        static_assert(sizeof(JointStatus) == 1 && static_cast<int>(JointStatus::Intact) == 0 &&
+                      static_cast<int>(JointStatus::Broken) == 2 && kLanes == 8);
+        [[maybe_unused]] constexpr uint64_t kAllBroken = 0x0202020202020202ull;
         Block B;
         // The joints are in the order of node 0 (model/renumber.cpp), so side A's nodes (0, 1)
         // stream through memory, but side B's (3, 2: the neighbouring triangle) jump: their
@@ -656,13 +791,25 @@ void run_range(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
                     }
                 }
             }
-            if (block(J, s, x, j, B)) {
-                commit_block<kEnergy, kScatter>(J, s, f, j, B, out);
-                out.blocked += kLanes;
-            } else {
-                for (int l = 0; l < kLanes; ++l)
-                    scalar(j + l);
+            // the statuses of the block: all intact (0), all broken, or a mix
+            uint64_t st;
+            std::memcpy(&st, s.status.data() + j, sizeof st);
+            if (st == 0) {
+                if (block(J, s, x, j, B)) {
+                    commit_block<kEnergy, kScatter>(J, s, f, j, B, out);
+                    out.blocked += kLanes;
+                    continue;
+                }
+            } else if constexpr (!kEnergy) {
+                if (damaged != nullptr && st != kAllBroken && damaged(J, s, x, j, B)) {
+                    commit_block<kEnergy, kScatter, true>(J, s, f, j, B, out);
+                    for (int l = 0; l < kLanes; ++l)
+                        out.blocked += B.live[l] != 0.0 ? 1 : 0;
+                    continue;
+                }
             }
+            for (int l = 0; l < kLanes; ++l)
+                scalar(j + l);
         }
     }
     for (; j < end; ++j)
@@ -781,6 +928,10 @@ bool joint_avx2_supported() {
 #else
     return false;
 #endif
+}
+
+void set_damaged_blocks(bool on) {
+    g_damaged = on;
 }
 
 void set_joint_path(JointPath p) {

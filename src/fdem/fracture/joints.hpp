@@ -109,6 +109,11 @@ bool joint_avx512_supported();
 /// true when this build has the AVX2 variant and the CPU runs it.
 bool joint_avx2_supported();
 
+/// Blocks that hold softening or broken joints (computed on the chosen path on steps without
+/// the energy, when none of their joints' damage grows) on (the default) or off: for tests that
+/// compare both.
+void set_damaged_blocks(bool on);
+
 /// The path joint_forces uses for blocks of intact joints: "avx512", "avx2", "portable" or
 /// "scalar" (printed by `fdem run`).
 const char* joint_path_name();

@@ -42,7 +42,11 @@ Run run(const Model& m, int threads, int steps) {
           s.energy.contact,
           s.energy.dissipated_contact,
           s.contact.active_contacts,
-          s.contact.cand.node.size()};
+          s.contact.cand.node.size(),
+          0,
+          0,
+          0,
+          {}};
     const ContactApplyLists& L = s.contact.apply_lists;
     if (L.threads == threads) {
         for (int u = 0; u < threads; ++u) {

@@ -617,11 +617,14 @@ TEST(JointSubset, OwnedForcesHistoryAndSumsAreSerialForAnyPartition) {
 // the scalar path: forces, sums and state over a loading that takes joints from intact through
 // softening to broken (blocks then mix elastic, softening and broken joints, and fall back),
 // with 1 and 2 threads (scatter and gather), energy on some steps.
-TEST(Joints, BlockedPathSameBits) {
+// (the blocks of softening and broken joints, kDamaged in joints.cpp, run on the steps
+// without energy; mixed: law 0 has MixedMode::Proportional, whose kept shares they load)
+void expect_blocked_path_same_bits(MixedMode mixed) {
+    constexpr int kSteps = 50;
     const MeshData mesh = make_rectangle_mesh(0, 0, 40 * kH, 40 * kH, 40, 40, true);
     const SplitMesh sm = split_mesh(mesh.nodes, mesh.tris);
     Joints J;
-    J.laws.push_back(make_joint_law(material()));
+    J.laws.push_back(make_joint_law(material(SofteningLength::Exact, mixed)));
     J.laws.push_back(make_joint_law(material(SofteningLength::YGeo)));
     add_edge_joints(J, sm.x0, sm.tris, sm.vertex, 0);
     for (int32_t j = 0; j < J.num_joints(); j += 37)
@@ -642,17 +645,19 @@ TEST(Joints, BlockedPathSameBits) {
         std::vector<Real> sums;
         int64_t blocked = 0;  ///< joint-steps done by the blocked path
     };
-    auto run = [&](detail::JointPath path, int threads) {
+    auto run = [&](detail::JointPath path, int threads, bool damaged = true) {
         Run r;
         const int saved = omp_get_max_threads();
         omp_set_num_threads(threads);
         detail::set_joint_path(path);
+        detail::set_damaged_blocks(damaged);
         r.s = make_joint_state(J);
         std::vector<Vec2> x = sm.x0;
         std::mt19937_64 jr(9);
-        for (int n = 1; n <= 40; ++n) {
-            // the left quarter is driven to breaking, the rest stays elastic (|o| < 0.6 o_p)
-            const double a = n <= 20 ? 0.02 * n : 0.4 + 3.0 * (n - 20);
+        for (int n = 1; n <= kSteps; ++n) {
+            // the left quarter is driven to breaking, the rest stays elastic (|o| < 0.6 o_p);
+            // from step 41 the drive is back at 0.1: the softened joints unload elastically
+            const double a = n <= 20 ? 0.02 * n : n <= 40 ? 0.4 + 3.0 * (n - 20) : 0.1;
             for (NodeId i = 0; i < nn; ++i)
                 x[static_cast<size_t>(i)] =
                     sm.x0[static_cast<size_t>(i)] +
@@ -668,6 +673,7 @@ TEST(Joints, BlockedPathSameBits) {
             r.blocked += p.blocked;
         }
         detail::set_joint_path(detail::JointPath::Auto);
+        detail::set_damaged_blocks(true);
         omp_set_num_threads(saved);
         return r;
     };
@@ -689,13 +695,16 @@ TEST(Joints, BlockedPathSameBits) {
     if (detail::joint_avx512_supported()) paths.push_back(detail::JointPath::Avx512);
     if (detail::joint_avx2_supported()) paths.push_back(detail::JointPath::Avx2);
     for (const auto path : paths) {
+        // blocks of softening and broken joints ran: more joint-steps blocked than without them
+        const int64_t intact_only = run(path, 1, false).blocked;
         for (const int threads : {1, 2}) {
             const Run o = run(path, threads);
+            EXPECT_GT(o.blocked, intact_only + J.num_joints() / 2);
             SCOPED_TRACE(testing::Message()
                          << "path " << static_cast<int>(path) << ", threads " << threads);
             // the blocked path ran for most joint-steps, and not for all (fallbacks tested too)
-            EXPECT_GT(o.blocked, 40 * J.num_joints() / 3);
-            EXPECT_LT(o.blocked, 40 * J.num_joints());
+            EXPECT_GT(o.blocked, kSteps * J.num_joints() / 3);
+            EXPECT_LT(o.blocked, kSteps * J.num_joints());
             EXPECT_TRUE(same(ref.f, o.f));
             EXPECT_TRUE(same(ref.sums, o.sums));
             EXPECT_TRUE(same(ref.s.d_max, o.s.d_max));
@@ -706,8 +715,21 @@ TEST(Joints, BlockedPathSameBits) {
             EXPECT_TRUE(same(ref.s.mode, o.s.mode));
             EXPECT_TRUE(same(ref.s.break_step, o.s.break_step));
             EXPECT_EQ(std::memcmp(&ref.s.total_work, &o.s.total_work, sizeof(Real)), 0);
+            if (mixed == MixedMode::Proportional) {
+                EXPECT_TRUE(same(ref.s.dn_max, o.s.dn_max));
+                EXPECT_TRUE(same(ref.s.an_min, o.s.an_min));
+                EXPECT_TRUE(same(ref.s.as_min, o.s.as_min));
+            }
         }
     }
+}
+
+TEST(Joints, BlockedPathSameBits) {
+    expect_blocked_path_same_bits(MixedMode::Independent);
+}
+
+TEST(Joints, BlockedPathSameBitsProportionalMixedMode) {
+    expect_blocked_path_same_bits(MixedMode::Proportional);
 }
 
 // spec §5: the Gershgorin bound of eq. 5.1 bounds omega_max^2 of M^-1 K measured by power
