@@ -155,6 +155,9 @@ struct JointState {
     /// per-joint forces on nodes 0, 1 (parallel path; empty until the first call with 2+ threads)
     std::vector<std::array<Vec2, 2>> jf;
     std::vector<Real> chunk_sums;
+    /// per block of 8 joints: steps to go joint by joint after its softening or broken joints
+    /// failed as a block (a damage grew); which path computes a block changes no bit
+    std::vector<uint8_t> block_wait;
 };
 
 }  // namespace fdem

@@ -620,7 +620,7 @@ TEST(JointSubset, OwnedForcesHistoryAndSumsAreSerialForAnyPartition) {
 // (the blocks of softening and broken joints, kDamaged in joints.cpp, run on the steps
 // without energy; mixed: law 0 has MixedMode::Proportional, whose kept shares they load)
 void expect_blocked_path_same_bits(MixedMode mixed) {
-    constexpr int kSteps = 50;
+    constexpr int kSteps = 60;
     const MeshData mesh = make_rectangle_mesh(0, 0, 40 * kH, 40 * kH, 40, 40, true);
     const SplitMesh sm = split_mesh(mesh.nodes, mesh.tris);
     Joints J;
