@@ -289,16 +289,42 @@ void note_contact_force_nodes(ContactState& cs, size_t pairs, EachPair&& each) {
     std::sort(list.begin(), list.end());
 }
 
+// The smallest real node target j reaches: j itself, or an edge target's smaller end node.
+inline NodeId target_low_node(const ContactTopology& ct, NodeId j) {
+    if (j < ct.num_real_nodes) return j;
+    const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
+    return std::min(e[0], e[1]);
+}
+
+// Bounds b[0] = 0 <= b[1] <= ... <= b[T] = N (the real nodes) of T node ranges holding about
+// equal numbers of n items (pairs, records) whose targets target(i) gives: quantiles of the
+// low nodes (target_low_node) of an even sample of up to kSamples items; equal shares of the
+// ids without items. For threads that add at their own node range: any bounds give the same
+// bits, these give each thread about the same work wherever the pairs lie in the ids.
+template <size_t kSamples, class Target>
+void quantile_node_ranges(const ContactTopology& ct, size_t n, int T, Target&& target, NodeId* b) {
+    const NodeId nr = ct.num_real_nodes;
+    std::array<NodeId, kSamples> sample;
+    const size_t ns = std::min(n, kSamples), ts = static_cast<size_t>(T);
+    for (size_t q = 0; q < ns; ++q)
+        sample[q] = target_low_node(ct, target((2 * q + 1) * n / (2 * ns)));
+    std::sort(sample.begin(), sample.begin() + static_cast<ptrdiff_t>(ns));
+    b[0] = 0;
+    for (size_t u = 1; u < ts; ++u)
+        b[u] = ns > 0 ? sample[u * ns / ts] : static_cast<NodeId>(static_cast<int64_t>(nr) * u / T);
+    b[ts] = nr;
+}
+
 // The real nodes [lo, hi] the forces of pair (target j, contactor c) can reach: the target's
 // (an edge target: its end nodes) and body c's node range, which holds every vertex, virtual-node
 // parent and welded copy of its contactor geometry (a conservative span, without the walk).
 inline void pair_span(const Model& m, const ContactTopology& ct, NodeId j, BodyId c, NodeId& lo,
                       NodeId& hi) {
     const Body& b = m.bodies[static_cast<size_t>(c)];
-    NodeId tl = j, th = j;
+    const NodeId tl = target_low_node(ct, j);
+    NodeId th = j;
     if (j >= ct.num_real_nodes) {
         const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
-        tl = std::min(e[0], e[1]);
         th = std::max(e[0], e[1]);
     }
     lo = std::min(tl, b.node_begin);
@@ -1504,28 +1530,16 @@ void apply_merged(const Model& m, const ContactTopology& ct, const StepPlan& pla
     // the adds (docs/parallel.md, stop 53). Any partition of the nodes gives the same bits:
     // each node is one thread's, and every thread adds in the merged order.
     const NodeId nn = ct.num_real_nodes;
-    {
-        constexpr size_t kSamples = 512;
-        std::array<NodeId, kSamples> sample;
-        const size_t ns = std::min(total, kSamples);
-        for (size_t q = 0; q < ns; ++q) {
+    resize_grow(sh.thread_lo, static_cast<size_t>(max_threads) + 1);
+    quantile_node_ranges<512>(
+        ct, total, max_threads,
+        [&](size_t i) {
             NodeId j;
             BodyId c;
-            record(order[(2 * q + 1) * total / (2 * ns)], j, c);
-            if (j >= nn) {
-                const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
-                j = std::min(e[0], e[1]);
-            }
-            sample[q] = j;
-        }
-        std::sort(sample.begin(), sample.begin() + static_cast<ptrdiff_t>(ns));
-        resize_grow(sh.thread_lo, static_cast<size_t>(max_threads) + 1);
-        NodeId* b = sh.thread_lo.data();
-        b[0] = 0;
-        for (int u = 1; u < max_threads; ++u)
-            b[u] = sample[static_cast<size_t>(u) * ns / static_cast<size_t>(max_threads)];
-        b[max_threads] = nn;
-    }
+            record(order[i], j, c);
+            return j;
+        },
+        sh.thread_lo.data());
     const NodeId* bounds = sh.thread_lo.data();
 #pragma omp parallel num_threads(max_threads)
     {
@@ -1564,25 +1578,9 @@ void build_apply_lists(const Model& m, const ContactTopology& ct, const Candidat
     const int32_t np = static_cast<int32_t>(cand.node.size());
     const NodeId nr = ct.num_real_nodes;
     const size_t ts = static_cast<size_t>(T);
-    const auto rep = [&](NodeId j) {  // the node a candidate of target j counts for
-        if (j < nr) return j;
-        const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
-        return std::min(e[0], e[1]);
-    };
     L.range_lo.resize(ts + 1);
-    {
-        constexpr size_t kSamples = 1024;
-        std::array<NodeId, kSamples> sample;
-        const size_t n = static_cast<size_t>(np), ns = std::min(n, kSamples);
-        for (size_t q = 0; q < ns; ++q)
-            sample[q] = rep(cand.node[(2 * q + 1) * n / (2 * ns)]);
-        std::sort(sample.begin(), sample.begin() + static_cast<ptrdiff_t>(ns));
-        L.range_lo[0] = 0;
-        for (size_t u = 1; u < ts; ++u)
-            L.range_lo[u] = ns > 0 ? sample[u * ns / ts]
-                                   : static_cast<NodeId>(static_cast<int64_t>(nr) * u / T);
-        L.range_lo[ts] = nr;
-    }
+    quantile_node_ranges<1024>(
+        ct, static_cast<size_t>(np), T, [&](size_t i) { return cand.node[i]; }, L.range_lo.data());
     const auto range_of = [&](NodeId i) {  // the range holding real node i (ranges may be empty)
         const NodeId* b = L.range_lo.data();
         return static_cast<int>(std::upper_bound(b + 1, b + T, i) - (b + 1));
@@ -1594,8 +1592,7 @@ void build_apply_lists(const Model& m, const ContactTopology& ct, const Candidat
     NodeId edge_at = 0;  // the running maximum of the edge targets' smaller nodes
     const auto segment = [&](NodeId j) {
         if (j < nr) return range_of(j);
-        const auto& e = ct.boundary_edges[static_cast<size_t>(j - ct.edge_target_base)];
-        edge_at = std::max(edge_at, std::min(e[0], e[1]));
+        edge_at = std::max(edge_at, target_low_node(ct, j));
         return T + range_of(edge_at);
     };
     for (int32_t pr = 0; pr < np; ++pr) {

@@ -686,6 +686,23 @@ void choose_path(detail::JointPath p) {
 
 const bool g_chosen = (choose_path(detail::JointPath::Auto), true);
 
+// The forces f0, f1 of joint j on nodes 0, 1 (-f1, -f0 on nodes 2, 3, eq. 9.3): added to f
+// (kScatter) or kept in s.jf for the per-node gather.
+template <bool kScatter>
+[[gnu::always_inline]] inline void put_joint_forces(const Joints& J, JointState& s,
+                                                    Vec2* __restrict f, int32_t j, Vec2 f0,
+                                                    Vec2 f1) {
+    if constexpr (kScatter) {
+        const auto& nd = J.nodes[j];
+        f[nd[0]] += f0;
+        f[nd[1]] += f1;
+        f[nd[2]] -= f1;
+        f[nd[3]] -= f0;
+    } else {
+        s.jf[j] = {f0, f1};
+    }
+}
+
 // The scalar commit of a qualified block, joint by joint in joint order (as one_joint).
 // kDamaged: broken joints skipped (one_joint returns at once for them), the softening ones
 // counted.
@@ -700,17 +717,7 @@ template <bool kEnergy, bool kScatter, bool kDamaged = false>
             if (B.live[l] == 0.0) continue;
             work += B.dw[l];
             wj[l] += B.dw[l];
-            const int32_t j = j0 + l;
-            const Vec2 f0{B.f0x[l], B.f0y[l]}, f1{B.f1x[l], B.f1y[l]};
-            if constexpr (kScatter) {
-                const auto& nd = J.nodes[j];
-                f[nd[0]] += f0;
-                f[nd[1]] += f1;
-                f[nd[2]] -= f1;
-                f[nd[3]] -= f0;
-            } else {
-                s.jf[j] = {f0, f1};
-            }
+            put_joint_forces<kScatter>(J, s, f, j0 + l, {B.f0x[l], B.f0y[l]}, {B.f1x[l], B.f1y[l]});
         }
         out.work = work;
         out.softening += B.softening;
@@ -729,19 +736,8 @@ template <bool kEnergy, bool kScatter, bool kDamaged = false>
     Real* __restrict wj = s.work.data() + j0;
     for (int l = 0; l < kLanes; ++l)
         wj[l] += B.dw[l];
-    for (int l = 0; l < kLanes; ++l) {
-        const int32_t j = j0 + l;
-        const Vec2 f0{B.f0x[l], B.f0y[l]}, f1{B.f1x[l], B.f1y[l]};
-        if constexpr (kScatter) {
-            const auto& nd = J.nodes[j];
-            f[nd[0]] += f0;
-            f[nd[1]] += f1;
-            f[nd[2]] -= f1;
-            f[nd[3]] -= f0;
-        } else {
-            s.jf[j] = {f0, f1};
-        }
-    }
+    for (int l = 0; l < kLanes; ++l)
+        put_joint_forces<kScatter>(J, s, f, j0 + l, {B.f0x[l], B.f0y[l]}, {B.f1x[l], B.f1y[l]});
 }
 
 // Joints [begin, end) in joint order, their sums into out (blocks of kLanes from begin: any
@@ -752,17 +748,7 @@ void run_range(const Joints& J, JointState& s, const Vec2* __restrict x, Vec2* _
     const auto scalar = [&](int32_t j) {
         Vec2 f0, f1;
         const bool loaded = one_joint<kEnergy, kMixed>(J, s, x, j, step, f0, f1, out);
-        if constexpr (kScatter) {
-            if (loaded) {
-                const auto& nd = J.nodes[j];
-                f[nd[0]] += f0;
-                f[nd[1]] += f1;
-                f[nd[2]] -= f1;
-                f[nd[3]] -= f0;
-            }
-        } else {
-            s.jf[j] = {f0, f1};
-        }
+        if (loaded || !kScatter) put_joint_forces<kScatter>(J, s, f, j, f0, f1);
     };
     int32_t j = begin;
     if (const BlockFn block = g_block[kEnergy ? 1 : 0]) {
